@@ -1,0 +1,48 @@
+// Minimal communicator wrapper: the same calls compile with and without MPI
+// (MOTE_HAVE_MPI). Without MPI it behaves as a communicator of one rank.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#ifdef MOTE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace mote::core {
+
+class Comm {
+ public:
+  /// The world communicator (one rank without MPI).
+  static Comm world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool is_root() const { return rank_ == 0; }
+
+  double min(double x) const;
+  double max(double x) const;
+  double sum(double x) const;
+  long long sum(long long x) const;
+  int max(int x) const;
+  /// Element-wise sum of a vector over all ranks (same length on every rank).
+  std::vector<double> sum(const std::vector<double>& x) const;
+  void barrier() const;
+  /// Broadcast of an int from root.
+  int broadcast(int x) const;
+  /// Paired exchange: send `send` to rank `dest`, receive `recv.size()` values from `source`.
+  void sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const;
+
+#ifdef MOTE_HAVE_MPI
+  MPI_Comm raw() const { return comm_; }
+#endif
+
+ private:
+  int rank_ = 0;
+  int size_ = 1;
+#ifdef MOTE_HAVE_MPI
+  MPI_Comm comm_ = MPI_COMM_WORLD;
+#endif
+};
+
+}  // namespace mote::core

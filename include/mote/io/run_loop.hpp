@@ -1,0 +1,79 @@
+// The generic time loop shared by every problem: time-step selection clipped
+// to output times, progress lines, snapshots (HDF5 + XDMF), history,
+// checkpoints, restarts, SIGINT/SIGTERM handling and non-finite detection.
+// Its settings are the deck tables [run] and [output].
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "mote/core/comm.hpp"
+#include "mote/core/deck.hpp"
+#include "mote/core/timers.hpp"
+#include "mote/core/units.hpp"
+#include "mote/io/simulation.hpp"
+
+namespace mote::io {
+
+/// Process exit codes of a problem executable.
+enum ExitCode : int {
+  kExitFinished = 0,
+  kExitError = 1,
+  kExitBadInput = 2,
+  kExitNonFinite = 3,
+  kExitInterrupted = 4,  // stopped by SIGINT/SIGTERM after writing a checkpoint
+  kExitStepLimit = 0,    // stopped at run.max_steps after writing a checkpoint
+};
+
+struct RunSettings {
+  double t_end = 0.0;
+  long long max_steps = 0;  // 0: no limit
+  long long nan_check_every = 1;
+  double progress_interval = 2.0;  // wall seconds between progress lines
+  std::string units = "dimensionless";
+  std::string output_dir = "output";
+  double snapshot_dt = 0.0;          // 0: first and last snapshot only
+  long long checkpoint_every = 0;    // steps; 0: only at the end and on signals
+  double checkpoint_wall = 0.0;      // wall seconds; 0: off
+  long long checkpoints_kept = 2;
+  long long history_every = 1;
+
+  static void declare(core::DeckSchema& schema);
+  static RunSettings from_deck(const core::Deck& deck);
+};
+
+class RunLoop {
+ public:
+  RunLoop(RunSettings settings, std::string problem, const core::Deck& deck, units::UnitSystem units,
+          const core::Comm& comm, core::Timers& timers);
+
+  /// Runs to run.t_end (or max_steps, a signal, a non-finite value); returns an ExitCode.
+  /// With `restart`, the state and loop counters are first read from that checkpoint.
+  int run(Simulation& sim, const std::optional<std::string>& restart);
+
+ private:
+  struct State {
+    double time = 0.0;
+    double dt = 0.0;
+    long long step = 0;
+    long long next_output = 0;     // index of the next scheduled snapshot time
+    long long snapshot_count = 0;  // number of snapshot files written (file numbering)
+    long long next_checkpoint = 1;
+  };
+  double next_snapshot_time(const State& s) const;
+  void write_snapshot(Simulation& sim, State& s);
+  void write_checkpoint(Simulation& sim, State& s);
+  void read_checkpoint(Simulation& sim, State& s, const std::string& path);
+  void write_run_attributes(H5File& file, const State& s) const;
+  bool report_non_finite(const Simulation& sim, const State& s) const;
+  void progress(const State& s, double wall, long long steps_done) const;
+
+  RunSettings settings_;
+  std::string problem_;
+  const core::Deck& deck_;
+  units::UnitSystem units_;
+  core::Comm comm_;
+  core::Timers& timers_;
+};
+
+}  // namespace mote::io

@@ -1,0 +1,46 @@
+// HDF5 snapshots with an XDMF descriptor, so that ParaView and VisIt open the
+// output directly. Layout of a snapshot file:
+//   /                 attributes: time, step, problem, code_version, deck (resolved TOML),
+//                     unit_system, unit_length_cm, unit_mass_g, unit_time_s
+//   /mesh/x_nodes, /mesh/y_nodes        node coordinates of a 2D rectilinear mesh
+//   /fields/<name>    cell data, shape (ny, nx); attributes unit (text), to_cgs (factor)
+// A Simulation describes its mesh and fields through SnapshotWriter; the run
+// loop adds the root attributes and commits the file and its .xmf.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mote/io/h5_file.hpp"
+
+namespace mote::io {
+
+/// Unit of a field: a label and the factor that converts code values to cgs.
+struct FieldUnit {
+  std::string label;
+  double to_cgs = 1.0;
+};
+
+class SnapshotWriter {
+ public:
+  explicit SnapshotWriter(H5File& file) : file_(file) {}
+
+  /// 2D rectilinear mesh with global node coordinates; this rank holds the
+  /// cell rows [row_begin, row_begin + rows) of all nx columns.
+  void rectilinear_2d(const std::vector<double>& x_nodes, const std::vector<double>& y_nodes, int row_begin, int rows);
+  /// Cell-centred field of this rank's rows, row-major (rows, nx), host memory.
+  void cell_field(const std::string& name, const double* data, const FieldUnit& unit);
+
+  /// XDMF text describing the mesh and fields of this snapshot; `h5_name` is
+  /// the snapshot's file name relative to the .xmf file.
+  std::string xdmf(const std::string& h5_name, double time) const;
+
+  H5File& file() { return file_; }
+
+ private:
+  H5File& file_;
+  int nx_ = 0, ny_ = 0, row_begin_ = 0, rows_ = 0;
+  std::vector<std::string> cell_fields_;
+};
+
+}  // namespace mote::io

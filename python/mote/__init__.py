@@ -1,0 +1,12 @@
+"""mote: read snapshots, checkpoints and history files of mote runs into numpy.
+
+    import mote
+    snap = mote.read_snapshot("runs/gaussian_pulse/snapshot_00004.h5")
+    snap.time, snap.fields["density"], snap.x_nodes, snap.deck
+    hist = mote.read_history("runs/gaussian_pulse/history.txt")
+    hist["time"], hist["mass"]
+"""
+from .snapshot import Snapshot, read_snapshot, list_snapshots, last_snapshot
+from .history import read_history
+
+__all__ = ["Snapshot", "read_snapshot", "list_snapshots", "last_snapshot", "read_history"]

@@ -1,0 +1,76 @@
+// Communicator wrapper (see include/mote/core/comm.hpp).
+#include "mote/core/comm.hpp"
+
+#include <stdexcept>
+
+namespace mote::core {
+
+Comm Comm::world() {
+  Comm c;
+#ifdef MOTE_HAVE_MPI
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (initialised && !finalised) {
+    MPI_Comm_rank(MPI_COMM_WORLD, &c.rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &c.size_);
+  }
+#endif
+  return c;
+}
+
+#ifdef MOTE_HAVE_MPI
+namespace {
+template <class T>
+T allreduce(T x, MPI_Datatype type, MPI_Op op, MPI_Comm comm, int size) {
+  if (size == 1) return x;
+  T y{};
+  MPI_Allreduce(&x, &y, 1, type, op, comm);
+  return y;
+}
+}  // namespace
+
+double Comm::min(double x) const { return allreduce(x, MPI_DOUBLE, MPI_MIN, comm_, size_); }
+double Comm::max(double x) const { return allreduce(x, MPI_DOUBLE, MPI_MAX, comm_, size_); }
+double Comm::sum(double x) const { return allreduce(x, MPI_DOUBLE, MPI_SUM, comm_, size_); }
+long long Comm::sum(long long x) const { return allreduce(x, MPI_LONG_LONG, MPI_SUM, comm_, size_); }
+int Comm::max(int x) const { return allreduce(x, MPI_INT, MPI_MAX, comm_, size_); }
+
+std::vector<double> Comm::sum(const std::vector<double>& x) const {
+  if (size_ == 1) return x;
+  std::vector<double> y(x.size());
+  MPI_Allreduce(x.data(), y.data(), static_cast<int>(x.size()), MPI_DOUBLE, MPI_SUM, comm_);
+  return y;
+}
+
+void Comm::barrier() const {
+  if (size_ > 1) MPI_Barrier(comm_);
+}
+
+int Comm::broadcast(int x) const {
+  if (size_ > 1) MPI_Bcast(&x, 1, MPI_INT, 0, comm_);
+  return x;
+}
+
+void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
+  MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, dest, tag, recv.data(),
+               static_cast<int>(recv.size()), MPI_DOUBLE, source, tag, comm_, MPI_STATUS_IGNORE);
+}
+#else
+double Comm::min(double x) const { return x; }
+double Comm::max(double x) const { return x; }
+double Comm::sum(double x) const { return x; }
+long long Comm::sum(long long x) const { return x; }
+int Comm::max(int x) const { return x; }
+std::vector<double> Comm::sum(const std::vector<double>& x) const { return x; }
+void Comm::barrier() const {}
+int Comm::broadcast(int x) const { return x; }
+void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int) const {
+  if (dest != 0 || source != 0 || send.size() != recv.size())
+    throw std::logic_error("Comm::sendrecv without MPI: only a self-exchange of equal sizes is possible");
+  recv = send;
+}
+#endif
+
+}  // namespace mote::core

@@ -1,0 +1,259 @@
+// Input-deck parsing and validation (see include/mote/core/deck.hpp).
+#include "mote/core/deck.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace mote::core {
+
+namespace {
+
+struct Located {
+  Value value;
+  std::string where;  // "deck.toml:12" or "command line 'a.b=1'"
+};
+
+std::string where_of(const std::string& file, const toml::source_region& region) {
+  return region.begin.line > 0 ? file + ":" + std::to_string(region.begin.line) : file;
+}
+
+std::string describe_node(const toml::node& node) {
+  if (node.is_boolean()) return "boolean";
+  if (node.is_integer()) return "integer " + std::to_string(node.as_integer()->get());
+  if (node.is_floating_point()) return "real " + value_to_toml(node.as_floating_point()->get());
+  if (node.is_string()) return "string \"" + node.as_string()->get() + "\"";
+  if (node.is_array()) return "array";
+  if (node.is_table()) return "table";
+  return "date/time";
+}
+
+/// Converts a TOML node to the declared type, or returns std::nullopt.
+std::optional<Value> convert(const toml::node& node, ValueType type) {
+  switch (type) {
+    case ValueType::Boolean:
+      if (node.is_boolean()) return Value(node.as_boolean()->get());
+      break;
+    case ValueType::Integer:
+      if (node.is_integer()) return Value(static_cast<long long>(node.as_integer()->get()));
+      break;
+    case ValueType::Real:
+      if (node.is_floating_point()) return Value(node.as_floating_point()->get());
+      if (node.is_integer()) return Value(static_cast<double>(node.as_integer()->get()));
+      break;
+    case ValueType::String:
+      if (node.is_string()) return Value(node.as_string()->get());
+      break;
+    case ValueType::RealArray:
+      if (const auto* arr = node.as_array()) {
+        std::vector<double> out;
+        for (const auto& el : *arr) {
+          if (el.is_floating_point()) out.push_back(el.as_floating_point()->get());
+          else if (el.is_integer()) out.push_back(static_cast<double>(el.as_integer()->get()));
+          else return std::nullopt;
+        }
+        return Value(out);
+      }
+      break;
+  }
+  return std::nullopt;
+}
+
+std::string expected_text(const KeySpec& spec) {
+  std::string e = type_name(spec.type());
+  if (!spec.range_text().empty()) e += " " + spec.range_text();
+  if (!spec.unit_text().empty()) e += " [" + spec.unit_text() + "]";
+  return e;
+}
+
+class Validator {
+ public:
+  Validator(const DeckSchema& schema, std::string file) : schema_(schema), file_(std::move(file)) {}
+
+  void add_file_table(const toml::table& root) {
+    for (auto&& [tkey, tnode] : root) {
+      const std::string tname(tkey.str());
+      const std::string where = where_of(file_, tkey.source());
+      const auto* tbl = tnode.as_table();
+      if (!tbl) {
+        errors_.push_back(where + ": key '" + tname + "' is outside any table; every key belongs to a table such as [run]");
+        continue;
+      }
+      if (!schema_.find_table(tname)) {
+        std::string msg = where + ": unknown table [" + tname + "]";
+        if (auto s = schema_.closest_table(tname)) msg += " (did you mean [" + *s + "]?)";
+        errors_.push_back(msg);
+        continue;
+      }
+      tables_present_.push_back(tname);
+      for (auto&& [kkey, knode] : *tbl) add(tname, std::string(kkey.str()), knode, where_of(file_, kkey.source()));
+    }
+  }
+
+  void add_override(const std::string& text) {
+    const std::string where = "command line '" + text + "'";
+    const auto eq = text.find('=');
+    const auto dot = text.find('.');
+    if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
+      errors_.push_back(where + ": overrides are written table.key=value");
+      return;
+    }
+    const std::string table = text.substr(0, dot), key = text.substr(dot + 1, eq - dot - 1), raw = text.substr(eq + 1);
+    if (!schema_.find_table(table)) {
+      std::string msg = where + ": unknown table [" + table + "]";
+      if (auto s = schema_.closest_table(table)) msg += " (did you mean [" + *s + "]?)";
+      errors_.push_back(msg);
+      return;
+    }
+    // Parse the value as TOML; a bare word that is not valid TOML is taken as a string.
+    toml::table parsed;
+    try {
+      parsed = toml::parse("v = " + raw);
+    } catch (const toml::parse_error&) {
+      parsed = toml::table{};
+      parsed.insert("v", raw);
+    }
+    if (std::find(tables_present_.begin(), tables_present_.end(), table) == tables_present_.end())
+      tables_present_.push_back(table);
+    add(table, key, *parsed.get("v"), where);
+  }
+
+  void finish() {
+    for (const auto& spec : schema_.keys()) {
+      const auto* table = schema_.find_table(spec.table());
+      const bool active = !table->optional || present(spec.table());
+      if (!active || values_.count(spec.dotted())) continue;
+      if (spec.required())
+        errors_.push_back(file_ + ": missing required key '" + spec.dotted() + "' (" + expected_text(spec) + ")" +
+                          (spec.doc_text().empty() ? "" : ": " + spec.doc_text()));
+    }
+  }
+
+  bool present(const std::string& table) const {
+    return std::find(tables_present_.begin(), tables_present_.end(), table) != tables_present_.end();
+  }
+
+  const std::vector<std::string>& errors() const { return errors_; }
+  const std::map<std::string, Located>& values() const { return values_; }
+
+ private:
+  void add(const std::string& table, const std::string& key, const toml::node& node, const std::string& where) {
+    const std::string dotted = table + "." + key;
+    const KeySpec* spec = schema_.find_key(table, key);
+    if (!spec) {
+      std::string msg = where + ": unknown key '" + dotted + "'";
+      if (auto s = schema_.closest_key(dotted)) msg += " (did you mean '" + *s + "'?)";
+      errors_.push_back(msg);
+      return;
+    }
+    auto value = convert(node, spec->type());
+    if (!value) {
+      errors_.push_back(where + ": key '" + dotted + "': expected " + expected_text(*spec) + ", got " + describe_node(node));
+      return;
+    }
+    if (auto violation = spec->range_violation(*value); !violation.empty()) {
+      errors_.push_back(where + ": key '" + dotted + "': value " + value_to_toml(*value) + " is out of range; expected " +
+                        expected_text(*spec));
+      return;
+    }
+    values_[dotted] = Located{*value, where};
+  }
+
+  const DeckSchema& schema_;
+  std::string file_;
+  std::vector<std::string> errors_;
+  std::vector<std::string> tables_present_;
+  std::map<std::string, Located> values_;
+};
+
+}  // namespace
+
+Deck Deck::parse(const std::string& text, const std::string& source_name, const DeckSchema& schema,
+                 const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& err) {
+    const auto& r = err.source();
+    throw DeckError("invalid deck " + source_name + ":\n  " + source_name + ":" + std::to_string(r.begin.line) + ":" +
+                    std::to_string(r.begin.column) + ": TOML syntax error: " + std::string(err.description()));
+  }
+  Validator v(schema, source_name);
+  v.add_file_table(root);
+  for (const auto& o : overrides) v.add_override(o);
+  v.finish();
+  if (!v.errors().empty()) {
+    std::string msg = "invalid deck " + source_name + " (" + std::to_string(v.errors().size()) + " error" +
+                      (v.errors().size() > 1 ? "s" : "") + "):";
+    for (const auto& e : v.errors()) msg += "\n  " + e;
+    throw DeckError(msg);
+  }
+  Deck deck;
+  deck.source_ = source_name;
+  deck.schema_ = &schema;
+  for (const auto& t : schema.tables())
+    if (!t.optional || v.present(t.name)) deck.active_tables_.push_back(t.name);
+  for (const auto& spec : schema.keys()) {
+    if (std::find(deck.active_tables_.begin(), deck.active_tables_.end(), spec.table()) == deck.active_tables_.end())
+      continue;
+    const auto it = v.values().find(spec.dotted());
+    deck.values_[spec.dotted()] = it != v.values().end() ? it->second.value : *spec.default_opt();
+    deck.units_[spec.dotted()] = spec.unit_text();
+  }
+  return deck;
+}
+
+Deck Deck::load(const std::string& path, const DeckSchema& schema, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DeckError("cannot read deck file '" + path + "': " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw DeckError("cannot read deck file '" + path + "': read error");
+  return parse(text.str(), path, schema, overrides);
+}
+
+bool Deck::has_table(const std::string& table) const {
+  return std::find(active_tables_.begin(), active_tables_.end(), table) != active_tables_.end();
+}
+
+const Value& Deck::value(const std::string& dotted, ValueType type) const {
+  const auto it = values_.find(dotted);
+  if (it == values_.end()) throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
+  const KeySpec* spec = nullptr;
+  const auto dot = dotted.find('.');
+  spec = schema_->find_key(dotted.substr(0, dot), dotted.substr(dot + 1));
+  if (!spec || spec->type() != type)
+    throw std::logic_error("deck key '" + dotted + "' read as " + type_name(type) + " but declared otherwise");
+  return it->second;
+}
+
+bool Deck::boolean(const std::string& dotted) const { return std::get<bool>(value(dotted, ValueType::Boolean)); }
+long long Deck::integer(const std::string& dotted) const { return std::get<long long>(value(dotted, ValueType::Integer)); }
+double Deck::real(const std::string& dotted) const { return std::get<double>(value(dotted, ValueType::Real)); }
+const std::string& Deck::string(const std::string& dotted) const {
+  return std::get<std::string>(value(dotted, ValueType::String));
+}
+const std::vector<double>& Deck::real_array(const std::string& dotted) const {
+  return std::get<std::vector<double>>(value(dotted, ValueType::RealArray));
+}
+
+std::string Deck::to_toml() const {
+  std::ostringstream os;
+  os << "# resolved deck (source: " << source_ << ")\n";
+  for (const auto& table : active_tables_) {
+    os << "\n[" << table << "]\n";
+    for (const auto& spec : schema_->keys()) {
+      if (spec.table() != table) continue;
+      os << spec.key() << " = " << value_to_toml(values_.at(spec.dotted()));
+      if (!spec.unit_text().empty()) os << "  # " << spec.unit_text();
+      os << "\n";
+    }
+  }
+  return os.str();
+}
+
+}  // namespace mote::core

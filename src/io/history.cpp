@@ -1,0 +1,58 @@
+// History file of global diagnostics (see include/mote/io/history.hpp).
+#include "mote/io/history.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "mote/core/log.hpp"
+#include "mote/io/output_files.hpp"
+
+namespace mote::io {
+
+HistoryFile::HistoryFile(const std::string& path, const core::Comm& comm, long long restart_step)
+    : path_(path), root_(comm.is_root()) {
+  if (!root_) return;
+  std::string kept;
+  if (restart_step >= 0) {
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("#", 0) == 0) {
+        kept += line + "\n";
+        header_written_ = true;
+        continue;
+      }
+      std::istringstream row(line);
+      long long step = 0;
+      if ((row >> step) && step <= restart_step) kept += line + "\n";
+    }
+    // Rewrite the kept rows atomically, then append.
+    {
+      std::ofstream tmp(temporary_name(path), std::ios::trunc);
+      tmp << kept;
+      if (!tmp) throw std::runtime_error("cannot write history file '" + temporary_name(path) + "'");
+    }
+    if (std::rename(temporary_name(path).c_str(), path.c_str()) != 0)
+      throw std::runtime_error("cannot replace history file '" + path + "'");
+    out_.open(path, std::ios::app);
+  } else {
+    out_.open(path, std::ios::trunc);
+  }
+  if (!out_) throw std::runtime_error("cannot open history file '" + path + "'");
+}
+
+void HistoryFile::record(long long step, double time, double dt, const std::vector<Diagnostic>& diagnostics) {
+  if (!root_) return;
+  if (!header_written_) {
+    out_ << "# step time dt";
+    for (const auto& d : diagnostics) out_ << " " << d.name;
+    out_ << "\n";
+    header_written_ = true;
+  }
+  out_ << step << log::format(" %.17g %.17g", time, dt);
+  for (const auto& d : diagnostics) out_ << log::format(" %.17g", d.value);
+  out_ << "\n";
+  out_.flush();
+}
+
+}  // namespace mote::io

@@ -1,0 +1,277 @@
+// The generic time loop (see include/mote/io/run_loop.hpp).
+#include "mote/io/run_loop.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "mote/core/log.hpp"
+#include "mote/io/history.hpp"
+#include "mote/io/output_files.hpp"
+
+namespace mote::io {
+
+namespace {
+
+// The one piece of global state a signal handler needs.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void mote_on_stop_signal(int sig) { g_stop_signal = sig; }
+
+/// Installs SIGINT/SIGTERM handlers for the lifetime of a run and restores the previous ones.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    g_stop_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = mote_on_stop_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~SignalGuard() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
+std::string hms(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
+  const long long s = static_cast<long long>(seconds + 0.5);
+  return log::format("%02lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
+}
+
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void RunSettings::declare(core::DeckSchema& schema) {
+  schema.table("run", "Time loop: end time, step limit, checks and progress output.");
+  schema.real("run.t_end").unit("code time").min(0.0).doc("End time of the run.");
+  schema.integer("run.max_steps").default_value(0LL).min(0).doc("Stop (with a checkpoint) after this many steps in total; 0 = no limit.");
+  schema.integer("run.nan_check_every").default_value(1LL).min(1).doc("Steps between checks of the evolved fields for NaN/Inf.");
+  schema.real("run.progress_interval").default_value(2.0).unit("s (wall)").min(0.0).doc("Wall-clock seconds between progress lines.");
+  std::vector<std::string> names;
+  for (auto p = units::unit_system_names(); *p; ++p) names.emplace_back(*p);
+  schema.string("run.units").default_value(std::string("dimensionless")).one_of(names).doc("Code-unit system: sets the cgs factors stored with every field.");
+
+  schema.table("output", "Snapshots, checkpoints and history.");
+  schema.string("output.dir").default_value(std::string("output")).doc("Output directory (created after the deck is validated).");
+  schema.real("output.snapshot_dt").default_value(0.0).unit("code time").min(0.0).doc("Time between snapshots; 0 = initial and final only.");
+  schema.integer("output.checkpoint_every").default_value(0LL).min(0).doc("Steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM.");
+  schema.real("output.checkpoint_wall").default_value(0.0).unit("s (wall)").min(0.0).doc("Wall-clock seconds between checkpoints; 0 = off.");
+  schema.integer("output.checkpoints_kept").default_value(2LL).min(1).doc("Number of most recent checkpoints kept on disk.");
+  schema.integer("output.history_every").default_value(1LL).min(1).doc("Steps between rows of history.txt.");
+}
+
+RunSettings RunSettings::from_deck(const core::Deck& deck) {
+  RunSettings s;
+  s.t_end = deck.real("run.t_end");
+  s.max_steps = deck.integer("run.max_steps");
+  s.nan_check_every = deck.integer("run.nan_check_every");
+  s.progress_interval = deck.real("run.progress_interval");
+  s.units = deck.string("run.units");
+  s.output_dir = deck.string("output.dir");
+  s.snapshot_dt = deck.real("output.snapshot_dt");
+  s.checkpoint_every = deck.integer("output.checkpoint_every");
+  s.checkpoint_wall = deck.real("output.checkpoint_wall");
+  s.checkpoints_kept = deck.integer("output.checkpoints_kept");
+  s.history_every = deck.integer("output.history_every");
+  return s;
+}
+
+RunLoop::RunLoop(RunSettings settings, std::string problem, const core::Deck& deck, units::UnitSystem units,
+                 const core::Comm& comm, core::Timers& timers)
+    : settings_(std::move(settings)), problem_(std::move(problem)), deck_(deck), units_(std::move(units)), comm_(comm),
+      timers_(timers) {}
+
+double RunLoop::next_snapshot_time(const State& s) const {
+  if (settings_.snapshot_dt <= 0.0) return settings_.t_end;
+  return std::min(settings_.t_end, static_cast<double>(s.next_output) * settings_.snapshot_dt);
+}
+
+void RunLoop::write_run_attributes(H5File& file, const State& s) const {
+  file.write_attribute("/", "time", s.time);
+  file.write_attribute("/", "step", static_cast<std::int64_t>(s.step));
+  file.write_attribute("/", "problem", problem_);
+  file.write_attribute("/", "code", std::string("mote ") + MOTE_VERSION_STRING);
+  file.write_attribute("/", "deck", deck_.to_toml());
+  file.write_attribute("/", "unit_system", units_.name);
+  file.write_attribute("/", "unit_length_cm", units_.length);
+  file.write_attribute("/", "unit_mass_g", units_.mass);
+  file.write_attribute("/", "unit_time_s", units_.time);
+}
+
+void RunLoop::write_snapshot(Simulation& sim, State& s) {
+  core::ScopedTimer timer(timers_, "io::snapshot");
+  const std::string path = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "h5");
+  std::string xdmf;
+  {
+    H5File file(temporary_name(path), H5File::Mode::Create, comm_);
+    write_run_attributes(file, s);
+    SnapshotWriter writer(file);
+    sim.write_snapshot(writer);
+    xdmf = writer.xdmf(std::filesystem::path(path).filename().string(), s.time);
+  }
+  commit_file(path, comm_);
+  const std::string xmf = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "xmf");
+  if (comm_.is_root()) {
+    std::ofstream out(temporary_name(xmf), std::ios::trunc);
+    out << xdmf;
+    if (!out) throw std::runtime_error("cannot write '" + temporary_name(xmf) + "'");
+  }
+  commit_file(xmf, comm_);
+  log::info("  snapshot ", path, " (t = ", log::format("%.6g", s.time), ")");
+  s.snapshot_count += 1;
+}
+
+void RunLoop::write_checkpoint(Simulation& sim, State& s) {
+  core::ScopedTimer timer(timers_, "io::checkpoint");
+  const std::string path = numbered_path(settings_.output_dir, "checkpoint", s.next_checkpoint, "h5");
+  {
+    H5File file(temporary_name(path), H5File::Mode::Create, comm_);
+    write_run_attributes(file, s);
+    file.write_attribute("/", "dt", s.dt);
+    file.write_attribute("/", "next_output", static_cast<std::int64_t>(s.next_output));
+    file.write_attribute("/", "snapshot_count", static_cast<std::int64_t>(s.snapshot_count));
+    file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
+    file.create_group("/state");
+    sim.save_state(file);
+  }
+  commit_file(path, comm_);
+  log::info("  checkpoint ", path, " (step ", s.step, ")");
+  if (comm_.is_root()) {
+    const long long stale = s.next_checkpoint - settings_.checkpoints_kept;
+    for (long long i = stale; i >= 1; --i) {
+      const std::string old = numbered_path(settings_.output_dir, "checkpoint", i, "h5");
+      if (!std::filesystem::exists(old)) break;
+      std::filesystem::remove(old);
+    }
+  }
+  s.next_checkpoint += 1;
+}
+
+void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
+  H5File file(path, H5File::Mode::Read, comm_);
+  if (file.read_attribute_string("/", "problem") != problem_)
+    throw std::runtime_error("checkpoint '" + path + "' belongs to problem '" + file.read_attribute_string("/", "problem") +
+                             "', not '" + problem_ + "'");
+  s.time = file.read_attribute_real("/", "time");
+  s.step = file.read_attribute_int("/", "step");
+  s.dt = file.read_attribute_real("/", "dt");
+  s.next_output = file.read_attribute_int("/", "next_output");
+  s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
+  s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
+  sim.load_state(file);
+  log::info("restarted from ", path, " at step ", s.step, ", t = ", log::format("%.10g", s.time));
+}
+
+bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
+  const auto bad = sim.find_non_finite();
+  if (bad)
+    log::error("non-finite value in field '", bad->field, "' at ", bad->location, " after step ", s.step,
+               log::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
+               " holds the last good state.");
+  return comm_.max(bad ? 1 : 0) != 0;
+}
+
+void RunLoop::progress(const State& s, double wall, long long steps_done) const {
+  const double frac = settings_.t_end > 0 ? s.time / settings_.t_end : 1.0;
+  const double rate = wall > 0 ? steps_done / wall : 0.0;
+  const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
+  log::info(log::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
+                        100.0 * frac, hms(eta).c_str(), rate));
+}
+
+int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
+  SignalGuard signals;
+  const double wall_start = wall_now();
+  State s;
+  if (restart) read_checkpoint(sim, s, *restart);
+  create_directory(settings_.output_dir, comm_);
+  HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_,
+                      restart ? s.step : -1);
+  const long long start_step = s.step;
+  if (!restart) {
+    if (report_non_finite(sim, s)) return kExitNonFinite;
+    history.record(s.step, s.time, 0.0, sim.diagnostics());
+    write_snapshot(sim, s);
+    s.next_output = 1;
+  }
+  double last_progress = wall_now(), last_checkpoint = wall_now();
+  bool snapshot_current = !restart;
+  const double t_end = settings_.t_end;
+  while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
+    if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
+      log::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step, "; writing a checkpoint and stopping");
+      write_checkpoint(sim, s);
+      return kExitInterrupted;
+    }
+    double dt;
+    {
+      core::ScopedTimer timer(timers_, "dt");
+      dt = sim.max_dt();
+    }
+    if (!(dt > 0.0) || !std::isfinite(dt)) {
+      log::error(log::format("invalid time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time));
+      return kExitNonFinite;
+    }
+    const double t_next = next_snapshot_time(s);
+    double new_time = s.time + dt;
+    if (new_time >= t_next) {  // land exactly on the next output time
+      dt = t_next - s.time;
+      new_time = t_next;
+    }
+    {
+      core::ScopedTimer timer(timers_, "step");
+      sim.advance(s.time, dt);
+    }
+    s.time = new_time;
+    s.dt = dt;
+    s.step += 1;
+    snapshot_current = false;
+    const bool at_snapshot = s.time >= t_next;
+    const bool checkpoint_due =
+        (settings_.checkpoint_every > 0 && s.step % settings_.checkpoint_every == 0) ||
+        (settings_.checkpoint_wall > 0 && comm_.max(wall_now() - last_checkpoint) >= settings_.checkpoint_wall);
+    const bool check_due = s.step % settings_.nan_check_every == 0;
+    if ((check_due || at_snapshot || checkpoint_due) && report_non_finite(sim, s)) return kExitNonFinite;
+    if (s.step % settings_.history_every == 0) history.record(s.step, s.time, s.dt, sim.diagnostics());
+    if (at_snapshot) {
+      write_snapshot(sim, s);
+      s.next_output += 1;
+      snapshot_current = true;
+    }
+    if (checkpoint_due) {
+      write_checkpoint(sim, s);
+      last_checkpoint = wall_now();
+    }
+    if (s.step == start_step + 1 || wall_now() - last_progress >= settings_.progress_interval) {
+      progress(s, wall_now() - wall_start, s.step - start_step);
+      last_progress = wall_now();
+    }
+  }
+  const bool finished = s.time >= t_end;
+  if (report_non_finite(sim, s)) return kExitNonFinite;
+  if (!snapshot_current) write_snapshot(sim, s);
+  write_checkpoint(sim, s);
+  progress(s, wall_now() - wall_start, s.step - start_step);
+  const double wall = wall_now() - wall_start;
+  log::info(finished ? "finished" : "stopped at run.max_steps", log::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)",
+                                                                           s.step - start_step, s.time, wall,
+                                                                           (s.step - start_step) / std::max(wall, 1e-30)));
+  if (finished) sim.finish(s.time);
+  log::info("timers:\n", timers_.summary(wall));
+  return finished ? kExitFinished : kExitStepLimit;
+}
+
+}  // namespace mote::io

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Bad input is rejected before any output exists (foundation acceptance 2).
+
+usage: deck_errors.py EXE WORKDIR
+Each bad deck must exit with code 2, name the offending key or file in its
+message, and leave no output directory behind.
+"""
+import os
+import shutil
+import sys
+
+from harness import Checks, run
+
+exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+checks = Checks()
+
+GOOD = """[run]
+t_end = 0.01
+[output]
+dir = "{out}"
+[grid]
+nx = 16
+ny = 16
+[transport]
+diffusivity = 0.01
+[pulse]
+t0 = 0.5
+"""
+
+cases = {
+    "unknown_key": (GOOD.replace("nx = 16", "nxx = 16"), ["unknown key 'grid.nxx'", "did you mean 'grid.nx'", ".toml:6:"]),
+    "wrong_type": (GOOD.replace("nx = 16", 'nx = "sixteen"'), ["key 'grid.nx'", "expected integer", ".toml:6:"]),
+    "negative_resolution": (GOOD.replace("ny = 16", "ny = -16"), ["key 'grid.ny'", "out of range", ">= 4"]),
+    "missing_required": (GOOD.replace("diffusivity = 0.01", ""), ["missing required key 'transport.diffusivity'"]),
+    "syntax_error": (GOOD.replace("[grid]", "[grid"), ["TOML syntax error"]),
+    "bad_choice": (GOOD + "[scheme]\nlimiter = \"superbee\"\n", ["key 'scheme.limiter'", "one of \"none\", \"vanleer\", \"mc\""]),
+}
+for name, (text, expected) in cases.items():
+    out = os.path.join(work, "out_" + name)
+    deck = os.path.join(work, name + ".toml")
+    with open(deck, "w") as f:
+        f.write(text.format(out=out))
+    p = run([exe, deck], expect=None)
+    msg = p.stderr
+    checks.check(p.returncode == 2, f"{name}: exit code {p.returncode} == 2")
+    for e in expected:
+        checks.check(e in msg and deck in msg, f"{name}: message names the deck and contains {e!r}")
+    checks.check(not os.path.exists(out), f"{name}: no output directory created")
+
+# Unreadable deck file and a bad command-line override.
+out = os.path.join(work, "out_override")
+good = os.path.join(work, "good.toml")
+with open(good, "w") as f:
+    f.write(GOOD.format(out=out))
+p = run([exe, os.path.join(work, "does_not_exist.toml")], expect=None)
+checks.check(p.returncode == 2 and "cannot read deck file" in p.stderr and "does_not_exist.toml" in p.stderr,
+             "missing deck file: exit 2 and the file is named")
+p = run([exe, good, "grid.nx=0"], expect=None)
+checks.check(p.returncode == 2 and "command line 'grid.nx=0'" in p.stderr, "bad override: exit 2 and named")
+checks.check(not os.path.exists(out), "bad override: no output directory created")
+# Inconsistent values found by the problem itself are reported the same way.
+p = run([exe, good, "grid.x_max=-1"], expect=None)
+checks.check(p.returncode == 2 and "x_max" in p.stderr and not os.path.exists(out), "inconsistent grid: exit 2, no output")
+# The good deck runs.
+run([exe, good])
+checks.check(os.path.exists(os.path.join(out, "snapshot_00001.h5")), "good deck: runs and writes snapshots")
+p = run([exe, "--help"])
+checks.check("diffusivity (real)  required" in p.stdout, "--help lists the keys with types and defaults")
+sys.exit(checks.finish())

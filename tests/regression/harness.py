@@ -1,0 +1,47 @@
+"""Shared helpers for regression tests: running problem executables and
+comparing their output. Each test script exits non-zero on failure and ends
+with a line 'N passed, M failed'."""
+import os
+import subprocess
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+
+
+def run(cmd, expect=0, **kw):
+    """Runs cmd (list); returns CompletedProcess; raises if the exit code differs from expect."""
+    env = dict(os.environ, **MPI_ENV)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, **kw)
+    if expect is not None and p.returncode != expect:
+        raise AssertionError(f"{' '.join(cmd)} exited {p.returncode}, expected {expect}\nstdout:\n{p.stdout[-3000:]}\nstderr:\n{p.stderr[-3000:]}")
+    return p
+
+
+class Checks:
+    """Collects named pass/fail results and prints a summary line."""
+
+    def __init__(self):
+        self.passed = 0
+        self.failed = 0
+
+    def check(self, ok, what):
+        print(("PASS " if ok else "FAIL ") + what, flush=True)
+        if ok:
+            self.passed += 1
+        else:
+            self.failed += 1
+
+    def finish(self):
+        print(f"{self.passed} passed, {self.failed} failed")
+        return 0 if self.failed == 0 and self.passed > 0 else 1
+
+
+def fit_order(resolutions, errors):
+    """Least-squares slope of log(error) against log(1/resolution)."""
+    import numpy as np
+    x = np.log(1.0 / np.asarray(resolutions, dtype=float))
+    y = np.log(np.asarray(errors, dtype=float))
+    return float(np.polyfit(x, y, 1)[0])

@@ -1,0 +1,138 @@
+// Deck declaration, parsing and validation (include/mote/core/deck.hpp).
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "mote/core/deck.hpp"
+
+using mote::core::Deck;
+using mote::core::DeckError;
+using mote::core::DeckSchema;
+
+namespace {
+
+DeckSchema make_schema() {
+  DeckSchema s;
+  s.table("grid", "grid");
+  s.integer("grid.nx").default_value(64LL).min(1).doc("cells");
+  s.real("grid.length").greater_than(0.0).unit("cm").doc("size");
+  s.string("grid.kind").default_value(std::string("uniform")).one_of({"uniform", "log"});
+  s.boolean("grid.periodic").default_value(true);
+  s.real_array("grid.sizes").default_value(std::vector<double>{1.0, 2.0}).min(0.0);
+  s.table("dust", "dust physics", /*optional=*/true);
+  s.real("dust.grain_size").greater_than(0.0).unit("cm");
+  return s;
+}
+
+/// The message of the DeckError thrown by parsing `text`.
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  const auto schema = make_schema();
+  try {
+    Deck::parse(text, "test.toml", schema, overrides);
+  } catch (const DeckError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Deck, DefaultsAndValues) {
+  const auto schema = make_schema();
+  const auto d = Deck::parse("[grid]\nlength = 2\nsizes = [1, 2.5]\n", "t.toml", schema);
+  EXPECT_EQ(d.integer("grid.nx"), 64);
+  EXPECT_DOUBLE_EQ(d.real("grid.length"), 2.0);  // integer literal accepted for a real key
+  EXPECT_EQ(d.string("grid.kind"), "uniform");
+  EXPECT_TRUE(d.boolean("grid.periodic"));
+  EXPECT_EQ(d.real_array("grid.sizes"), (std::vector<double>{1.0, 2.5}));
+  EXPECT_FALSE(d.has_table("dust"));
+}
+
+TEST(Deck, UnknownKeyNamesLineAndSuggests) {
+  const auto msg = error_of("[grid]\nlength = 1.0\nnxx = 3\n");
+  EXPECT_NE(msg.find("test.toml:3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("unknown key 'grid.nxx'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("did you mean 'grid.nx'"), std::string::npos) << msg;
+}
+
+TEST(Deck, UnknownTableSuggests) {
+  const auto msg = error_of("[grd]\nlength = 1.0\n");
+  EXPECT_NE(msg.find("unknown table [grd]"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("did you mean [grid]"), std::string::npos) << msg;
+}
+
+TEST(Deck, WrongTypeIsRejected) {
+  const auto msg = error_of("[grid]\nlength = 1.0\nnx = 2.5\n");
+  EXPECT_NE(msg.find("test.toml:3: key 'grid.nx': expected integer"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("got real 2.5"), std::string::npos) << msg;
+  EXPECT_NE(error_of("[grid]\nlength = \"big\"\n").find("expected real > 0 [cm], got string \"big\""), std::string::npos);
+}
+
+TEST(Deck, OutOfRangeIsRejected) {
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\nnx = -4\n").find("key 'grid.nx': value -4 is out of range; expected integer >= 1"),
+            std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = 0.0\n").find("expected real > 0"), std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\nkind = \"cubic\"\n").find("one of \"uniform\", \"log\""), std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\nsizes = [1.0, -1.0]\n").find("grid.sizes"), std::string::npos);
+}
+
+TEST(Deck, MissingRequiredKey) {
+  const auto msg = error_of("[grid]\nnx = 4\n");
+  EXPECT_NE(msg.find("missing required key 'grid.length'"), std::string::npos) << msg;
+}
+
+TEST(Deck, OptionalTableRequiredOnlyWhenPresent) {
+  EXPECT_EQ(error_of("[grid]\nlength = 1.0\n"), "");
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\n[dust]\n").find("missing required key 'dust.grain_size'"), std::string::npos);
+  const auto schema = make_schema();
+  const auto d = Deck::parse("[grid]\nlength = 1.0\n[dust]\ngrain_size = 0.1\n", "t.toml", schema);
+  EXPECT_TRUE(d.has_table("dust"));
+  EXPECT_DOUBLE_EQ(d.real("dust.grain_size"), 0.1);
+}
+
+TEST(Deck, AllErrorsReportedTogether) {
+  const auto msg = error_of("[grid]\nnx = 0\nfoo = 1\n");
+  EXPECT_NE(msg.find("3 errors"), std::string::npos) << msg;
+}
+
+TEST(Deck, CommandLineOverrides) {
+  const auto schema = make_schema();
+  const auto d = Deck::parse("[grid]\nlength = 1.0\n", "t.toml", schema,
+                             {"grid.nx=128", "grid.kind=log", "dust.grain_size=1e-4"});
+  EXPECT_EQ(d.integer("grid.nx"), 128);
+  EXPECT_EQ(d.string("grid.kind"), "log");  // bare word taken as a string
+  EXPECT_TRUE(d.has_table("dust"));         // an override can switch a table on
+  const auto msg = error_of("[grid]\nlength = 1.0\n", {"grid.nx=-3"});
+  EXPECT_NE(msg.find("command line 'grid.nx=-3'"), std::string::npos) << msg;
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\n", {"nx=3"}).find("table.key=value"), std::string::npos);
+}
+
+TEST(Deck, SyntaxErrorAndUnreadableFile) {
+  EXPECT_NE(error_of("[grid\nlength = 1.0\n").find("TOML syntax error"), std::string::npos);
+  const auto schema = make_schema();
+  try {
+    Deck::load("/nonexistent/deck.toml", schema);
+    FAIL() << "no error for a missing file";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read deck file '/nonexistent/deck.toml'"), std::string::npos);
+  }
+}
+
+TEST(Deck, ResolvedDeckReadsBackIdentically) {
+  const auto schema = make_schema();
+  const auto d = Deck::parse("[grid]\nlength = 0.1\n[dust]\ngrain_size = 3e-5\n", "t.toml", schema);
+  const auto again = Deck::parse(d.to_toml(), "resolved", schema);
+  EXPECT_EQ(again.to_toml().substr(again.to_toml().find('\n')), d.to_toml().substr(d.to_toml().find('\n')));
+  EXPECT_EQ(again.real("grid.length"), 0.1);  // exact round trip of reals
+  EXPECT_EQ(again.real("dust.grain_size"), 3e-5);
+}
+
+TEST(DeckSchema, EditDistanceAndHelp) {
+  EXPECT_EQ(mote::core::edit_distance("kitten", "sitting"), 3);
+  EXPECT_EQ(mote::core::edit_distance("", "abc"), 3);
+  const auto schema = make_schema();
+  const auto help = schema.help_text();
+  EXPECT_NE(help.find("length (real)  required  [cm]  > 0"), std::string::npos) << help;
+  EXPECT_NE(schema.markdown().find("| `nx` | integer | `64` |"), std::string::npos);
+  EXPECT_THROW(make_schema().real("grid.nx"), std::logic_error);  // declared twice
+}

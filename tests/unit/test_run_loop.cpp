@@ -1,0 +1,154 @@
+// The generic run loop (include/mote/io/run_loop.hpp) driven by a small
+// Simulation: the forced decay y' = -y + sin(t), forward Euler. Checks output
+// times, restart bit-identity, non-finite detection and signal handling.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+
+#include "mote/core/deck.hpp"
+#include "mote/io/output_files.hpp"
+#include "mote/io/run_loop.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace mote;
+
+class Decay final : public io::Simulation {
+ public:
+  long long poison_step = -1;  // this step produces a NaN
+  long long signal_step = -1;  // this step raises SIGTERM
+  double y = 1.0;
+  long long steps = 0;
+
+  double max_dt() override { return 0.03; }
+  void advance(double t, double dt) override {
+    y += dt * (-y + std::sin(t));
+    steps += 1;
+    if (steps == poison_step) y = std::nan("");
+    if (steps == signal_step) std::raise(SIGTERM);
+  }
+  void write_snapshot(io::SnapshotWriter& out) const override {
+    out.rectilinear_2d({0.0, 1.0}, {0.0, 1.0}, 0, 1);
+    out.cell_field("y", &y, {"1", 1.0});
+  }
+  void save_state(io::H5File& f) const override {
+    f.write("/state/y", io::Block::whole({1}), &y);
+    const std::int64_t s = steps;
+    f.write("/state/steps", io::Block::whole({1}), &s);
+  }
+  void load_state(const io::H5File& f) override {
+    f.read("/state/y", io::Block::whole({1}), &y);
+    std::int64_t s = 0;
+    f.read("/state/steps", io::Block::whole({1}), &s);
+    steps = s;
+  }
+  std::vector<io::Diagnostic> diagnostics() const override { return {{"y", y}}; }
+  std::optional<io::NonFinite> find_non_finite() const override {
+    if (std::isfinite(y)) return std::nullopt;
+    return io::NonFinite{"y", "the only cell"};
+  }
+};
+
+class RunLoopTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    io::RunSettings::declare(schema_);
+    dir_ = (fs::temp_directory_path() / ("mote_run_loop_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()))).string();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+
+  int run(Decay& sim, const std::vector<std::string>& overrides, const std::optional<std::string>& restart = {}) {
+    std::vector<std::string> all = {"output.dir=" + dir_, "run.progress_interval=100"};
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    const auto deck = core::Deck::parse("[run]\nt_end = 1.0\n[output]\nsnapshot_dt = 0.25\n", "test", schema_, all);
+    core::Timers timers;
+    io::RunLoop loop(io::RunSettings::from_deck(deck), "decay", deck, units::UnitSystem{}, core::Comm::world(), timers);
+    return loop.run(sim, restart);
+  }
+
+  double snapshot_time(int i) const {
+    io::H5File f(io::numbered_path(dir_, "snapshot", i, "h5"), io::H5File::Mode::Read, core::Comm::world());
+    return f.read_attribute_real("/", "time");
+  }
+
+  core::DeckSchema schema_;
+  std::string dir_;
+};
+
+}  // namespace
+
+TEST_F(RunLoopTest, SnapshotsLandExactlyOnOutputTimes) {
+  Decay sim;
+  EXPECT_EQ(run(sim, {}), io::kExitFinished);
+  for (int i = 0; i <= 4; ++i) EXPECT_EQ(snapshot_time(i), 0.25 * i);
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 5, "h5")));
+  EXPECT_TRUE(fs::exists(io::numbered_path(dir_, "snapshot", 4, "xmf")));
+  EXPECT_TRUE(fs::exists(fs::path(dir_) / "history.txt"));
+  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+TEST_F(RunLoopTest, RestartIsBitIdentical) {
+  Decay full;
+  ASSERT_EQ(run(full, {}), io::kExitFinished);
+  const double y_full = full.y;
+  const long long steps_full = full.steps;
+
+  fs::remove_all(dir_);
+  fs::create_directories(dir_);
+  Decay first;
+  ASSERT_EQ(run(first, {"run.max_steps=13"}), io::kExitStepLimit);
+  EXPECT_EQ(first.steps, 13);
+  Decay resumed;
+  resumed.y = -123.0;  // overwritten by the checkpoint
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  ASSERT_EQ(run(resumed, {}, *checkpoint), io::kExitFinished);
+  EXPECT_EQ(resumed.steps, steps_full);
+  EXPECT_EQ(resumed.y, y_full);  // bit-identical
+}
+
+TEST_F(RunLoopTest, NonFiniteStopsAndKeepsLastGoodCheckpoint) {
+  Decay sim;
+  sim.poison_step = 12;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=5", "output.checkpoints_kept=5"}), io::kExitNonFinite);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("non-finite value in field 'y' at the only cell after step 12"), std::string::npos) << err;
+  const auto latest = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(latest);
+  EXPECT_EQ(io::index_of(*latest), 2);  // written at step 10; none after the NaN
+  io::H5File f(*latest, io::H5File::Mode::Read, core::Comm::world());
+  EXPECT_EQ(f.read_attribute_int("/", "step"), 10);
+  double y = 0;
+  f.read("/state/y", io::Block::whole({1}), &y);
+  EXPECT_TRUE(std::isfinite(y));
+}
+
+TEST_F(RunLoopTest, SigtermWritesCheckpointAndResumes) {
+  Decay sim;
+  sim.signal_step = 7;
+  EXPECT_EQ(run(sim, {}), io::kExitInterrupted);
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  io::H5File f(*checkpoint, io::H5File::Mode::Read, core::Comm::world());
+  EXPECT_EQ(f.read_attribute_int("/", "step"), 7);
+  Decay resumed;
+  EXPECT_EQ(run(resumed, {}, *checkpoint), io::kExitFinished);
+  Decay reference;
+  EXPECT_EQ(run(reference, {"output.dir=" + dir_ + "_ref"}), io::kExitFinished);
+  EXPECT_EQ(resumed.y, reference.y);
+  fs::remove_all(dir_ + "_ref");
+}
+
+TEST_F(RunLoopTest, OldCheckpointsArePruned) {
+  Decay sim;
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=3", "output.checkpoints_kept=2"}), io::kExitFinished);
+  int count = 0;
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (e.path().filename().string().rfind("checkpoint_", 0) == 0) ++count;
+  EXPECT_EQ(count, 2);
+}
