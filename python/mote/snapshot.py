@@ -15,7 +15,7 @@ class Snapshot:
 
     Attributes: path, time, step, problem, deck (resolved TOML text), units
     (dict: system, length_cm, mass_g, time_s), x_nodes, y_nodes, x, y (cell
-    centres), fields (name -> array), field_units (name -> (label, to_cgs)).
+    centres), fields (name -> array), data (other arrays, name -> array), field_units (name -> (label, to_cgs)).
     """
 
     def __init__(self, path):
@@ -40,6 +40,7 @@ class Snapshot:
                 for name, ds in f["fields"].items():
                     self.fields[name] = ds[...]
                     self.field_units[name] = (_text(ds.attrs.get("unit", "")), float(ds.attrs.get("to_cgs", 1.0)))
+            self.data = {name: ds[...] for name, ds in f["data"].items()} if "data" in f else {}
             self.state = {name: ds[...] for name, ds in f["state"].items()} if "state" in f else {}
 
     @property

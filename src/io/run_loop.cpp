@@ -124,12 +124,14 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
   }
   commit_file(path, comm_);
   const std::string xmf = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "xmf");
-  if (comm_.is_root()) {
-    std::ofstream out(temporary_name(xmf), std::ios::trunc);
-    out << xdmf;
-    if (!out) throw std::runtime_error("cannot write '" + temporary_name(xmf) + "'");
+  if (!xdmf.empty()) {
+    if (comm_.is_root()) {
+      std::ofstream out(temporary_name(xmf), std::ios::trunc);
+      out << xdmf;
+      if (!out) throw std::runtime_error("cannot write '" + temporary_name(xmf) + "'");
+    }
+    commit_file(xmf, comm_);
   }
-  commit_file(xmf, comm_);
   log::info("  snapshot ", path, " (t = ", log::format("%.6g", s.time), ")");
   s.snapshot_count += 1;
 }

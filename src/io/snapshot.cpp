@@ -32,7 +32,15 @@ void SnapshotWriter::cell_field(const std::string& name, const double* data, con
   cell_fields_.push_back(name);
 }
 
+void SnapshotWriter::array(const std::string& name, const Block& block, const double* data, const FieldUnit& unit) {
+  const std::string path = "/data/" + name;
+  file_.write(path, block, data);
+  file_.write_attribute(path, "unit", unit.label);
+  file_.write_attribute(path, "to_cgs", unit.to_cgs);
+}
+
 std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const {
+  if (nx_ == 0) return {};  // no mesh described: nothing for a visualiser
   std::ostringstream os;
   os << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
   os << "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n";

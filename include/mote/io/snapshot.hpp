@@ -4,6 +4,7 @@
 //                     unit_system, unit_length_cm, unit_mass_g, unit_time_s
 //   /mesh/x_nodes, /mesh/y_nodes        node coordinates of a 2D rectilinear mesh
 //   /fields/<name>    cell data, shape (ny, nx); attributes unit (text), to_cgs (factor)
+//   /data/<name>      other arrays (grain-size grids, distributions), same attributes
 // A Simulation describes its mesh and fields through SnapshotWriter; the run
 // loop adds the root attributes and commits the file and its .xmf.
 #pragma once
@@ -30,6 +31,11 @@ class SnapshotWriter {
   void rectilinear_2d(const std::vector<double>& x_nodes, const std::vector<double>& y_nodes, int row_begin, int rows);
   /// Cell-centred field of this rank's rows, row-major (rows, nx), host memory.
   void cell_field(const std::string& name, const double* data, const FieldUnit& unit);
+
+  /// Any other array (not part of the XDMF mesh description), e.g. a grain-size
+  /// grid or a per-cell size distribution, under "/data/<name>"; `block` is
+  /// this rank's part (Block::whole for arrays identical on every rank).
+  void array(const std::string& name, const Block& block, const double* data, const FieldUnit& unit);
 
   /// XDMF text describing the mesh and fields of this snapshot; `h5_name` is
   /// the snapshot's file name relative to the .xmf file.
