@@ -1,6 +1,7 @@
 // Communicator wrapper (see include/mote/core/comm.hpp).
 #include "mote/core/comm.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mote::core {
@@ -54,8 +55,12 @@ int Comm::broadcast(int x) const {
 }
 
 void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
-  MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, dest, tag, recv.data(),
-               static_cast<int>(recv.size()), MPI_DOUBLE, source, tag, comm_, MPI_STATUS_IGNORE);
+  sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
+}
+
+void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int tag) const {
+  MPI_Sendrecv(send, send_count, MPI_DOUBLE, dest < 0 ? MPI_PROC_NULL : dest, tag, recv, recv_count, MPI_DOUBLE,
+               source < 0 ? MPI_PROC_NULL : source, tag, comm_, MPI_STATUS_IGNORE);
 }
 #else
 double Comm::min(double x) const { return x; }
@@ -66,10 +71,15 @@ int Comm::max(int x) const { return x; }
 std::vector<double> Comm::sum(const std::vector<double>& x) const { return x; }
 void Comm::barrier() const {}
 int Comm::broadcast(int x) const { return x; }
-void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int) const {
-  if (dest != 0 || source != 0 || send.size() != recv.size())
+void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
+  sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
+}
+
+void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int) const {
+  if (dest < 0 && source < 0) return;
+  if (dest != 0 || source != 0 || send_count != recv_count)
     throw std::logic_error("Comm::sendrecv without MPI: only a self-exchange of equal sizes is possible");
-  recv = send;
+  std::copy(send, send + send_count, recv);
 }
 #endif
 

@@ -31,7 +31,10 @@ class Comm {
   /// Broadcast of an int from root.
   int broadcast(int x) const;
   /// Paired exchange: send `send` to rank `dest`, receive `recv.size()` values from `source`.
+  /// A negative rank means "no partner" on that side (nothing sent or received).
   void sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const;
+  /// Raw-pointer form of sendrecv (host memory).
+  void sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int tag) const;
 
 #ifdef MOTE_HAVE_MPI
   MPI_Comm raw() const { return comm_; }

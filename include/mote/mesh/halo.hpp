@@ -1,0 +1,32 @@
+// Radial halo exchange between the MPI ranks that hold neighbouring radial
+// slabs of the grid. One device kernel packs the `ng` outermost active rows
+// of every trailing index (theta, species, components) on both sides, the
+// buffers travel through host memory (no GPU-aware MPI needed), and one
+// kernel unpacks them into the ghost rows. Domain edges are left to the
+// boundary conditions.
+#pragma once
+
+#include "mote/core/kokkos_types.hpp"
+#include "mote/mesh/grid.hpp"
+
+namespace mote::mesh {
+
+class RadialHalo {
+ public:
+  explicit RadialHalo(const Grid& grid);
+
+  /// Fields indexed (i, ...) with i the local radial index including ghosts.
+  void exchange(const View<Real*>& f);
+  void exchange(const View<Real**>& f);
+  void exchange(const View<Real***>& f);
+  void exchange(const View<Real****>& f);
+
+ private:
+  template <class ViewT>
+  void exchange_impl(const ViewT& f);
+  core::Comm comm_;
+  int ng_, nr_, left_, right_;
+  RealView1 send_, recv_;
+};
+
+}  // namespace mote::mesh
