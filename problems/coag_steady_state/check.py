@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Check (and plot) a coag_steady_state run (RBO24 Fig. 10, VALIDATION E3).
+
+    check.py RUN_DIR [--plot FILE.png] [--steady-tol 0.02] [--mass-tol 1e-10]
+
+Reads the snapshots, computes sigma_d(m) = m dSigma/dm (eq. 69) and checks
+  * steady state: relative L1 change of sigma_d between the last two snapshots
+    (divided by the time between them, times the last tenth of the run) <= steady-tol,
+  * mass conservation: |Sigma_d(t) / Sigma_d(0) - 1| <= mass-tol at every snapshot,
+  * cut-off at the fragmentation limit: the peak of a^... sigma_d lies within
+    [0.3, 1.5] a_frag, a_frag = 2 Sigma_g v_frag^2 / (3 pi rho_m alpha c_s^2)
+    (Birnstiel et al. 2012), and sigma_d has dropped below 1e-3 of its peak by 3 a_frag.
+Exits non-zero on failure; prints 'N passed, M failed'.
+"""
+import argparse
+import math
+import os
+import sys
+import tomllib
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import mote  # noqa: E402
+
+K_B, M_H, G, M_SUN, AU, YEAR = 1.380649e-16, 1.6735575e-24, 6.67430e-8, 1.98840987e33, 1.495978707e13, 3.15576e7
+
+
+def fragmentation_limit(deck):
+    c, d = deck["coagulation"], deck["disc"]
+    cs2 = K_B * d["temperature"] / (c["mu"] * M_H)
+    return 2 * d["sigma_gas"] * c["v_frag"] ** 2 / (3 * math.pi * c["rho_m"] * d["alpha"] * cs2)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--plot")
+    ap.add_argument("--steady-tol", type=float, default=0.02)
+    ap.add_argument("--mass-tol", type=float, default=1e-10)
+    args = ap.parse_args()
+    snaps = [mote.read_snapshot(p) for p in mote.list_snapshots(args.run_dir)]
+    if len(snaps) < 3:
+        print("need at least 3 snapshots")
+        return 1
+    deck = tomllib.loads(snaps[-1].deck)
+    a = snaps[-1].data["grain_size"]
+    sig = [s.data["sigma_d"][0] for s in snaps]
+    tot = np.array([s.data["surface_density"][0].sum() for s in snaps])
+    a_frag = fragmentation_limit(deck)
+    ok = []
+
+    def check(cond, what):
+        print(("PASS " if cond else "FAIL ") + what)
+        ok.append(bool(cond))
+
+    t = np.array([s.time for s in snaps])
+    change = np.sum(np.abs(sig[-1] - sig[-2])) / np.sum(sig[-1])
+    rate = change / (t[-1] - t[-2]) * 0.1 * t[-1]
+    check(rate <= args.steady_tol,
+          f"steady state: L1 change {change:.3e} between t = {t[-2] / YEAR:.4g} and {t[-1] / YEAR:.4g} yr "
+          f"({rate:.3e} per tenth of the run <= {args.steady_tol})")
+    merr = np.max(np.abs(tot / tot[0] - 1))
+    check(merr <= args.mass_tol, f"mass conserved: max |Sigma_d / Sigma_d(0) - 1| = {merr:.3e} <= {args.mass_tol:g}")
+    s = sig[-1]
+    peak = int(np.argmax(s))
+    check(0.3 * a_frag <= a[peak] <= 1.5 * a_frag,
+          f"peak of sigma_d at a = {a[peak]:.3e} cm within [0.3, 1.5] a_frag, a_frag = {a_frag:.3e} cm")
+    beyond = a >= 3 * a_frag
+    drop = np.max(s[beyond]) / s[peak] if np.any(beyond) else 0.0
+    check(drop < 1e-3, f"cut-off: max sigma_d beyond 3 a_frag / peak = {drop:.3e} < 1e-3")
+    print(f"coag_steady_state: t = {t[-1] / YEAR:.4g} yr, species = {len(a)}, a_frag = {a_frag:.4e} cm, "
+          f"a_peak = {a[peak]:.4e} cm, Sigma_d = {tot[-1]:.6e} g/cm^2")
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        for s_, snap in list(zip(sig, snaps))[:: max(1, len(snaps) // 6)] + [(sig[-1], snaps[-1])]:
+            ax.loglog(a, np.maximum(s_, 1e-30), label=f"{snap.time / YEAR:.3g} yr")
+        ax.axvline(a_frag, ls="--", c="k", lw=0.8, label="fragmentation limit")
+        ax.set(xlabel="grain size a [cm]", ylabel=r"$\sigma_d = m\,\partial\Sigma_d/\partial m$ [g cm$^{-2}$]",
+               ylim=(max(1e-8, s.max() * 1e-6), s.max() * 3), title="coag_steady_state (RBO24 Fig. 10)")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=110)
+        print(f"wrote {args.plot}")
+    print(f"{sum(ok)} passed, {len(ok) - sum(ok)} failed")
+    return 0 if all(ok) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,184 @@
+// Coagulation solver: pair-kernel evaluation and per-cell BS32 integration,
+// one Kokkos team per cell (RBO24 sec. 5-6). See coagulation.hpp.
+#include "mote/coagulation/coagulation.hpp"
+
+#include <algorithm>
+#include <type_traits>
+
+#include "mote/coagulation/bs32.hpp"
+#include "mote/coagulation/cell_rates.hpp"
+#include "mote/core/loops.hpp"
+#include "mote/core/units.hpp"
+
+namespace mote::coagulation {
+
+namespace detail {
+
+using TeamPolicy = Kokkos::TeamPolicy<ExecSpace>;
+using Member = TeamPolicy::member_type;
+using Scratch = Kokkos::View<Real*, ExecSpace::scratch_memory_space, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+constexpr int kScratchArrays = 9;
+
+template <class Kernel>
+bool uses_fragmentation(const Kernel& kernel) {
+  if constexpr (std::is_same_v<Kernel, PhysicalKernel>) return kernel.fragmentation;
+  return false;
+}
+
+}  // namespace detail
+
+AnyKernel make_kernel(const CoagulationSettings& s, const MassGrid& grid, const GasCells& gas) {
+  if (s.kernel == "constant") return ConstantKernel{s.kernel_coefficient};
+  if (s.kernel == "additive") return AdditiveKernel{s.kernel_coefficient, grid.mass_view()};
+  if (s.kernel == "product") return ProductKernel{s.kernel_coefficient, grid.mass_view()};
+  PhysicalKernel k;
+  k.mass = grid.mass_view();
+  k.size = grid.size_view();
+  k.gas = gas;
+  k.rho_m = grid.rho_m();
+  k.mu_mH = s.mu * units::cgs::m_H;
+  k.v_frag = s.v_frag;
+  k.vertically_integrated = s.vertically_integrated;
+  k.fragmentation = s.fragmentation;
+  return k;
+}
+
+Coagulation::Coagulation(const MassGrid& grid, const CoagulationSettings& settings, int cells)
+    : grid_(grid), settings_(settings), cells_(cells) {
+  batch_ = std::max(1, std::min(cells_, settings_.cells_per_batch));
+  tables_ = build_collision_tables(grid_, settings_.chi_im, settings_.fragment_slope);
+  k_coag_ = PairCoefficients("coagulation::k_coag", batch_, tables_.pairs);
+  k_frag_ = PairCoefficients("coagulation::k_frag", batch_, tables_.pairs);
+  next_substep_ = RealView1("coagulation::next_substep", cells_);
+  substeps_ = IntView1("coagulation::substeps", cells_);
+  rejections_ = IntView1("coagulation::rejections", cells_);
+  failed_ = IntView1("coagulation::failed", cells_);
+}
+
+template <class Kernel>
+void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
+  auto kc = k_coag_;
+  auto kf = k_frag_;
+  auto pi = tables_.pair_i;
+  auto pj = tables_.pair_j;
+  const int pairs = tables_.pairs;
+  Kokkos::parallel_for("coagulation::pair_kernels", detail::TeamPolicy(count, Kokkos::AUTO),
+                       KOKKOS_LAMBDA(const detail::Member& team) {
+                         const int lc = team.league_rank(), c = first + lc;
+                         Kokkos::parallel_for(Kokkos::TeamThreadRange(team, pairs), [&](int p) {
+                           const int i = pi(p), j = pj(p);
+                           const PairRate r = kernel(c, i, j);
+                           const Real half = i == j ? 0.5 : 1.0;
+                           const Real pf = math::min(math::max(r.p_frag, Real(0)), Real(1));
+                           kc(lc, p) = half * r.K * (1.0 - pf);
+                           kf(lc, p) = half * r.K * pf;
+                         });
+                       });
+  debug_fence("coagulation::pair_kernels");
+}
+
+template <class Kernel>
+CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, const Kernel& kernel) {
+  const int n = tables_.species;
+  const size_t bytes = detail::kScratchArrays * detail::Scratch::shmem_size(n);
+  Bs32Options base;
+  base.rel_tol = settings_.rel_tol;
+  base.max_steps = settings_.max_substeps;
+  const Real abs_factor = settings_.abs_tol;
+  auto next = next_substep_;
+  auto steps = substeps_;
+  auto rejected = rejections_;
+  auto failed = failed_;
+  for (int first = 0; first < cells_; first += batch_) {
+    const int count = std::min(batch_, cells_ - first);
+    evaluate_pairs(first, count, kernel);
+    const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
+    const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
+    Kokkos::parallel_for("coagulation::integrate", policy, KOKKOS_LAMBDA(const detail::Member& team) {
+      const int lc = team.league_rank(), c = first + lc;
+      const auto& scratch = team.team_scratch(0);
+      const detail::Scratch y(scratch, n), nd(scratch, n), bucket(scratch, n);
+      const Bs32Work<detail::Scratch> work{detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n),
+                                           detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n)};
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
+      team.team_barrier();
+      Real total = 0;
+      Kokkos::parallel_reduce(Kokkos::TeamThreadRange(team, n), [&](int k, Real& s) { s += math::fabs(y(k)); }, total);
+      Bs32Result r;
+      if (total > 0) {
+        Bs32Options o = base;
+        o.abs_tol = abs_factor * total;
+        o.h_init = next(c);
+        const auto rhs = [&](const detail::Member& tm, const detail::Scratch& yin, const detail::Scratch& out) {
+          rates(tm, lc, yin, out, nd, bucket);
+        };
+        r = bs32_integrate(team, n, y, dt, o, work, rhs);
+        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { density(c, k) = y(k); });
+      }
+      Kokkos::single(Kokkos::PerTeam(team), [&]() {
+        if (total > 0) next(c) = r.h_next;
+        steps(c) = r.accepted;
+        rejected(c) = r.rejected;
+        failed(c) = r.ok ? 0 : 1;
+      });
+    });
+    debug_fence("coagulation::integrate");
+  }
+  CallStatistics stats;
+  long long acc = 0, rej = 0;
+  int bad = 0;
+  Real hmin = 0;
+  par_reduce("coagulation::count_substeps", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += steps(c); }, acc);
+  par_reduce("coagulation::count_rejections", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += rejected(c); }, rej);
+  par_reduce("coagulation::count_failed", 0, cells_, KOKKOS_LAMBDA(int c, int& s) { s += failed(c); }, bad);
+  par_reduce("coagulation::min_next_substep", 0, cells_, KOKKOS_LAMBDA(int c, Real& m) {
+    if (next(c) > 0) m = math::min(m, next(c));
+  }, Kokkos::Min<Real>(hmin));
+  stats.substeps = acc;
+  stats.rejections = rej;
+  stats.failed_cells = bad;
+  stats.min_next_substep = hmin;
+  return stats;
+}
+
+template <class Kernel>
+void Coagulation::rates_with(const RealView2& density, const Kernel& kernel, const RealView2& dydt) {
+  const int n = tables_.species;
+  const size_t bytes = 4 * detail::Scratch::shmem_size(n);
+  for (int first = 0; first < cells_; first += batch_) {
+    const int count = std::min(batch_, cells_ - first);
+    evaluate_pairs(first, count, kernel);
+    const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
+    const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
+    Kokkos::parallel_for("coagulation::rates", policy, KOKKOS_LAMBDA(const detail::Member& team) {
+      const int lc = team.league_rank(), c = first + lc;
+      const auto& scratch = team.team_scratch(0);
+      const detail::Scratch y(scratch, n), out(scratch, n), nd(scratch, n), bucket(scratch, n);
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
+      team.team_barrier();
+      rates(team, lc, y, out, nd, bucket);
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { dydt(c, k) = out(k); });
+    });
+    debug_fence("coagulation::rates");
+  }
+}
+
+CallStatistics Coagulation::integrate(const RealView2& density, Real dt, const AnyKernel& kernel) {
+  return std::visit([&](const auto& k) { return integrate_with(density, dt, k); }, kernel);
+}
+
+void Coagulation::rates(const RealView2& density, const AnyKernel& kernel, const RealView2& dydt) {
+  std::visit([&](const auto& k) { rates_with(density, k, dydt); }, kernel);
+}
+
+#define MOTE_COAGULATION_INSTANTIATE(K)                                                          \
+  template void Coagulation::evaluate_pairs<K>(int, int, const K&);                               \
+  template CallStatistics Coagulation::integrate_with<K>(const RealView2&, Real, const K&);       \
+  template void Coagulation::rates_with<K>(const RealView2&, const K&, const RealView2&);
+MOTE_COAGULATION_INSTANTIATE(ConstantKernel)
+MOTE_COAGULATION_INSTANTIATE(AdditiveKernel)
+MOTE_COAGULATION_INSTANTIATE(ProductKernel)
+MOTE_COAGULATION_INSTANTIATE(PhysicalKernel)
+#undef MOTE_COAGULATION_INSTANTIATE
+
+}  // namespace mote::coagulation
