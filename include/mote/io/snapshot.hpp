@@ -2,7 +2,8 @@
 // output directly. Layout of a snapshot file:
 //   /                 attributes: time, step, problem, code_version, deck (resolved TOML),
 //                     unit_system, unit_length_cm, unit_mass_g, unit_time_s
-//   /mesh/x_nodes, /mesh/y_nodes        node coordinates of a 2D rectilinear mesh
+//   /mesh/x_nodes, /mesh/y_nodes        node coordinates: 1D for a rectilinear mesh,
+//                                       2D (rows + 1, cols + 1) for a structured one
 //   /fields/<name>    cell data, shape (ny, nx); attributes unit (text), to_cgs (factor)
 //   /data/<name>      other arrays (grain-size grids, distributions), same attributes
 // A Simulation describes its mesh and fields through SnapshotWriter; the run
@@ -29,7 +30,13 @@ class SnapshotWriter {
   /// 2D rectilinear mesh with global node coordinates; this rank holds the
   /// cell rows [row_begin, row_begin + rows) of all nx columns.
   void rectilinear_2d(const std::vector<double>& x_nodes, const std::vector<double>& y_nodes, int row_begin, int rows);
-  /// Cell-centred field of this rank's rows, row-major (rows, nx), host memory.
+  /// 2D structured (curvilinear) mesh of rows_total x cols cells, e.g. the
+  /// (R, theta) disc grid with rows = R cells and cols = theta cells. This rank
+  /// holds cell rows [row_begin, row_begin + rows); `x_nodes` and `y_nodes` are
+  /// its node coordinates, row-major ((rows + 1) x (cols + 1)); the node row
+  /// shared with the next rank is written by the rank that owns the last row.
+  void structured_2d(const double* x_nodes, const double* y_nodes, int rows_total, int cols, int row_begin, int rows);
+  /// Cell-centred field of this rank's rows, row-major (rows, cols), host memory.
   void cell_field(const std::string& name, const double* data, const FieldUnit& unit);
 
   /// Any other array (not part of the XDMF mesh description), e.g. a grain-size
@@ -44,8 +51,10 @@ class SnapshotWriter {
   H5File& file() { return file_; }
 
  private:
+  enum class Mesh { None, Rectilinear, Structured };
   H5File& file_;
-  int nx_ = 0, ny_ = 0, row_begin_ = 0, rows_ = 0;
+  Mesh mesh_ = Mesh::None;
+  int nx_ = 0, ny_ = 0, row_begin_ = 0, rows_ = 0;  // cells: ny_ rows of nx_ columns
   std::vector<std::string> cell_fields_;
 };
 

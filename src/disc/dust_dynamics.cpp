@@ -1,0 +1,359 @@
+// Multi-species pressureless dust dynamics on the (R, theta) grid: RBO24
+// sec. 3 and 3.1 (eq. 4-19); see include/mote/disc/dust_dynamics.hpp.
+#include "mote/disc/dust_dynamics.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+#include "mote/core/log.hpp"
+#include "mote/core/loops.hpp"
+#include "mote/disc/dust_riemann.hpp"
+#include "mote/dust/stopping_time.hpp"
+
+namespace mote::disc {
+
+namespace {
+
+using View4 = View<Real****>;
+
+/// MDRange over (i, j, s) in [i0, i1) x [j0, j1) x [0, ns).
+template <class F>
+void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, const F& f) {
+  par_for(name, i0, i1, j0, j1, 0, ns, f);
+}
+
+}  // namespace
+
+void DustSettings::declare(core::DeckSchema& s) {
+  s.table("dust", "Pressureless dust species on the grid (RBO24 sec. 3).");
+  s.real_array("dust.sizes").greater_than(0.0).unit("cm").doc("Grain radius of each species.");
+  s.real("dust.rho_grain").default_value(1.6).greater_than(0.0).unit("g cm^-3").doc("Grain material density.");
+  s.real_array("dust.schmidt").default_value(std::vector<double>{}).greater_than(0.0)
+      .doc("Schmidt number per species (eq. 15); empty = 1 for every species.");
+  s.real("dust.floor").default_value(1e-40).greater_than(0.0).unit("code density").doc("Density floor.");
+  s.real("dust.cfl_advection").default_value(0.4).greater_than(0.0).max(1.0).doc("C_adv of eq. 18.");
+  s.real("dust.cfl_diffusion").default_value(0.2).greater_than(0.0).max(1.0).doc("C_diff of eq. 19.");
+  s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
+  s.boolean("dust.drag").default_value(true).doc("Implicit gas drag (eq. 13-14).");
+  s.boolean("dust.gravity").default_value(true).doc("Stellar gravity and curvature sources (eq. 6).");
+}
+
+DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, double GM_code) {
+  DustSettings st;
+  for (double a : d.real_array("dust.sizes")) st.sizes.push_back(a / u.length);
+  if (st.sizes.empty()) throw core::DeckError("dust.sizes: at least one species is needed");
+  st.schmidt = d.real_array("dust.schmidt");
+  if (st.schmidt.empty()) st.schmidt.assign(st.sizes.size(), 1.0);
+  if (st.schmidt.size() != st.sizes.size())
+    throw core::DeckError(log::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
+  st.rho_grain = d.real("dust.rho_grain") / u.density();
+  st.floor = d.real("dust.floor");
+  st.cfl_advection = d.real("dust.cfl_advection");
+  st.cfl_diffusion = d.real("dust.cfl_diffusion");
+  st.diffusion = d.boolean("dust.diffusion");
+  st.drag = d.boolean("dust.drag");
+  st.gravity = d.boolean("dust.gravity");
+  st.GM = GM_code;
+  st.boundaries = mesh::Boundaries::from_deck(d);
+  return st;
+}
+
+DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
+    : grid_(grid), settings_(std::move(settings)), ns_(static_cast<int>(settings_.sizes.size())), halo_(grid) {
+  const int NI = grid.nr_total(), NJ = grid.nt_total();
+  Q = View4("dust::Q", NI, NJ, ns_, kDustVars);
+  W = View4("dust::W", NI, NJ, ns_, kDustVars);
+  W_half_ = View4("dust::W_half", NI, NJ, ns_, kDustVars);
+  flux_R_ = View4("dust::flux_R", NI + 1, NJ, ns_, kDustVars);
+  flux_Z_ = View4("dust::flux_Z", NI, NJ + 1, ns_, kDustVars);
+  gas_ = GasFields(NI, NJ);
+  gas_D_ = RealView2("dust::gas_D", NI, NJ);
+  schmidt_ = RealView1("dust::schmidt", ns_);
+  sizes_ = RealView1("dust::sizes", ns_);
+  auto sc_h = Kokkos::create_mirror_view(schmidt_);
+  auto sz_h = Kokkos::create_mirror_view(sizes_);
+  for (int s = 0; s < ns_; ++s) {
+    sc_h(s) = settings_.schmidt[s];
+    sz_h(s) = settings_.sizes[s];
+  }
+  Kokkos::deep_copy(schmidt_, sc_h);
+  Kokkos::deep_copy(sizes_, sz_h);
+  Kokkos::deep_copy(gas_D_, 1.0);
+  diffusion_ = mesh::diffusion_coefficients(grid, gas_D_);
+}
+
+void DustDynamics::set_gas(const GasFields& gas) {
+  gas_ = gas;
+  auto D = gas_D_;
+  auto rho = gas.rho, nu = gas.nu;
+  par_for("disc::dust_diffusivity", 0, grid_.nr_total(), 0, grid_.nt_total(),
+          KOKKOS_LAMBDA(int i, int j) { D(i, j) = rho(i, j) * nu(i, j); });
+  mesh::update_diffusion_coefficients(grid_, gas_D_, diffusion_);
+}
+
+void DustDynamics::initialise_from_primitives() {
+  fill_ghosts(W);
+  auto Q_ = Q, W_ = W;
+  auto Rc = grid_.Rc;
+  for_cells("disc::dust_prim_to_cons", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+    const Real rho = W_(i, j, s, kRho);
+    Q_(i, j, s, kRho) = rho;
+    Q_(i, j, s, kMomR) = rho * W_(i, j, s, kVR);
+    Q_(i, j, s, kAngMom) = rho * W_(i, j, s, kVphi) * Rc(i);
+    Q_(i, j, s, kMomZ) = rho * W_(i, j, s, kVZ);
+  });
+}
+
+void DustDynamics::fill_ghosts(const View4& w) {
+  halo_.exchange(w);
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, NI = grid_.nr_total(), ns = ns_;
+  const Real floor = settings_.floor;
+  const auto& b = settings_.boundaries;
+  // Radial sides first (active rows j), then theta sides over all i, which fills the corners.
+  if (grid_.has_inner_boundary() || grid_.has_outer_boundary()) {
+    const bool do_in = grid_.has_inner_boundary(), do_out = grid_.has_outer_boundary();
+    const bool zero_in = b.inner == mesh::BoundaryKind::Zero, zero_out = b.outer == mesh::BoundaryKind::Zero;
+    par_for("disc::dust_bc_radial", 0, ng, ng, ng + nt, 0, ns, KOKKOS_LAMBDA(int g, int j, int s) {
+      for (int k = 0; k < kDustVars; ++k) {
+        if (do_in) w(g, j, s, k) = w(ng, j, s, k);
+        if (do_out) w(ng + nr + g, j, s, k) = w(ng + nr - 1, j, s, k);
+      }
+      if (do_in && zero_in) w(g, j, s, kRho) = floor;
+      if (do_out && zero_out) w(ng + nr + g, j, s, kRho) = floor;
+    });
+  }
+  const bool zero_lo = b.lower == mesh::BoundaryKind::Zero, zero_hi = b.upper == mesh::BoundaryKind::Zero;
+  par_for("disc::dust_bc_theta", 0, NI, 0, ng, 0, ns, KOKKOS_LAMBDA(int i, int g, int s) {
+    for (int k = 0; k < kDustVars; ++k) {
+      w(i, g, s, k) = w(i, ng, s, k);
+      w(i, ng + nt + g, s, k) = w(i, ng + nt - 1, s, k);
+    }
+    if (zero_lo) w(i, g, s, kRho) = floor;
+    if (zero_hi) w(i, ng + nt + g, s, kRho) = floor;
+  });
+}
+
+void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
+  auto FR = flux_R_, FZ = flux_Z_;
+  auto Rc = grid_.Rc, Re = grid_.Re, tan_tc = grid_.tan_tc, tan_te = grid_.tan_te;
+  auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
+  auto AR = grid_.AR, AZ = grid_.AZ;
+  auto rho_g = gas_.rho;
+  auto sc = schmidt_;
+  const auto coef = diffusion_;
+  const bool diffuse = settings_.diffusion;
+  const auto& b = settings_.boundaries;
+  const bool closed_in = grid_.has_inner_boundary() && b.inner == mesh::BoundaryKind::Closed;
+  const bool closed_out = grid_.has_outer_boundary() && b.outer == mesh::BoundaryKind::Closed;
+  const bool closed_lo = b.lower == mesh::BoundaryKind::Closed, closed_hi = b.upper == mesh::BoundaryKind::Closed;
+
+  // Radial faces at Re(i), i in [ng, ng + nr]; cells L = i-1, R = i.
+  for_cells("disc::dust_flux_radial", ng, ng + nr + 1, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+    Real ql[kDustVars], qr[kDustVars];
+    for (int k = 0; k < kDustVars; ++k) {
+      ql[k] = w(i - 1, j, s, k);
+      qr[k] = w(i, j, s, k);
+      if (second_order) {
+        const Real sl = mignone_slope(w(i - 2, j, s, k), ql[k], qr[k], Rc(i - 2), Rc(i - 1), Rc(i), Re(i - 1), Re(i));
+        const Real sr = mignone_slope(ql[k], qr[k], w(i + 1, j, s, k), Rc(i - 1), Rc(i), Rc(i + 1), Re(i), Re(i + 1));
+        ql[k] += sl * (Re(i) - Rc(i - 1));
+        qr[k] += sr * (Re(i) - Rc(i));
+      }
+    }
+    Real f[kDustVars] = {0, 0, 0, 0};
+    const bool closed = (i == ng && closed_in) || (i == ng + nr && closed_out);
+    if (!closed) {
+      const Real vl = ql[kVR], vr = qr[kVR];  // normal = R_hat
+      const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
+      const Real R = Re(i);
+      f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
+      f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
+      f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
+      f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
+      for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
+      if (diffuse) {
+        const auto u = [&](int a, int c) { return w(a, c, s, kRho) / rho_g(a, c); };
+        const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
+        const Real* up = fd > 0 ? ql : qr;
+        f[kRho] += fd;
+        f[kMomR] += fd * up[kVR];
+        f[kAngMom] += fd * up[kVphi] * R;
+        f[kMomZ] += fd * up[kVZ];
+      }
+    }
+    for (int k = 0; k < kDustVars; ++k) FR(i, j, s, k) = f[k];
+  });
+
+  // Theta faces at te(j), j in [ng, ng + nt]; cells L = j-1 (below), R = j; coordinate tan(theta).
+  for_cells("disc::dust_flux_theta", ng, ng + nr, ng, ng + nt + 1, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+    Real ql[kDustVars], qr[kDustVars];
+    for (int k = 0; k < kDustVars; ++k) {
+      ql[k] = w(i, j - 1, s, k);
+      qr[k] = w(i, j, s, k);
+      if (second_order) {
+        const Real sl = mignone_slope(w(i, j - 2, s, k), ql[k], qr[k], tan_tc(j - 2), tan_tc(j - 1), tan_tc(j),
+                                      tan_te(j - 1), tan_te(j));
+        const Real sr = mignone_slope(ql[k], qr[k], w(i, j + 1, s, k), tan_tc(j - 1), tan_tc(j), tan_tc(j + 1),
+                                      tan_te(j), tan_te(j + 1));
+        ql[k] += sl * (tan_te(j) - tan_tc(j - 1));
+        qr[k] += sr * (tan_te(j) - tan_tc(j));
+      }
+    }
+    Real f[kDustVars] = {0, 0, 0, 0};
+    const bool closed = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
+    if (!closed) {
+      const Real sn = sin_te(j), cn = cos_te(j);
+      const Real vl = -ql[kVR] * sn + ql[kVZ] * cn, vr = -qr[kVR] * sn + qr[kVZ] * cn;
+      const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
+      const Real R = Rc(i);
+      f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
+      f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
+      f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
+      f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
+      for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
+      if (diffuse) {
+        const auto u = [&](int a, int c) { return w(a, c, s, kRho) / rho_g(a, c); };
+        const Real fd = coef.theta_flux(u, i, j) / sc(s);
+        const Real* up = fd > 0 ? ql : qr;
+        f[kRho] += fd;
+        f[kMomR] += fd * up[kVR];
+        f[kAngMom] += fd * up[kVphi] * R;
+        f[kMomZ] += fd * up[kVZ];
+      }
+    }
+    for (int k = 0; k < kDustVars; ++k) FZ(i, j, s, k) = f[k];
+  });
+}
+
+void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const View4& w_out, bool update_q) {
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
+  auto Q_ = Q, FR = flux_R_, FZ = flux_Z_;
+  auto V = grid_.V, Zc = grid_.Zc;
+  auto Rc = grid_.Rc;
+  auto rho_g = gas_.rho, cs2 = gas_.cs2, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
+  auto sizes = sizes_;
+  const Real dt = dt_stage, floor = settings_.floor, rho_m = settings_.rho_grain, GM = settings_.GM;
+  const bool gravity = settings_.gravity, drag = settings_.drag;
+  const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
+  for_cells("disc::dust_stage", ng, ng + nr, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+    // Flux divergence (eq. 8-9) from Q^n.
+    Real q[kDustVars];
+    const Real inv_v = dt / V(i, j);
+    for (int k = 0; k < kDustVars; ++k)
+      q[k] = Q_(i, j, s, k) - inv_v * (FR(i + 1, j, s, k) - FR(i, j, s, k) + FZ(i, j + 1, s, k) - FZ(i, j, s, k));
+    // Explicit sources (eq. 6) evaluated with the source-stage primitives.
+    const Real R = Rc(i), Z = Zc(i, j);
+    const Real rs = w_source(i, j, s, kRho);
+    Real aR = 0, aZ = 0;
+    if (gravity) {
+      const Real r2 = R * R + Z * Z;
+      const Real omega2 = GM / (r2 * math::sqrt(r2));
+      aR -= omega2 * R;
+      aZ -= omega2 * Z;
+    }
+    if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
+    // Conserved -> primitive (steps iii, vii). The transported specific momenta
+    // are kept within the range of the 3 x 3 neighbourhood at the source stage:
+    // transport (advection and eq. 16 diffusion) only averages velocities, and
+    // this bound stops round-off in near-empty cells from creating huge
+    // velocities there (which would collapse the time-step).
+    const Real rho = math::max(q[kRho], floor);
+    Real vR, vphi, vZ;
+    if (q[kRho] > floor) {
+      Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+      for (int a = i - 1; a <= i + 1; ++a)
+        for (int c = j - 1; c <= j + 1; ++c) {
+          const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};
+          for (int k = 0; k < 3; ++k) {
+            lo[k] = math::min(lo[k], v3[k]);
+            hi[k] = math::max(hi[k], v3[k]);
+          }
+        }
+      const Real inv = 1.0 / q[kRho];
+      vR = math::min(math::max(q[kMomR] * inv, lo[0]), hi[0]) + dt * aR * rs * inv;
+      vphi = math::min(math::max(q[kAngMom] * inv, lo[1]), hi[1]) / R;
+      vZ = math::min(math::max(q[kMomZ] * inv, lo[2]), hi[2]) + dt * aZ * rs * inv;
+    } else {
+      vR = w_source(i, j, s, kVR) + dt * aR;
+      vphi = w_source(i, j, s, kVphi);
+      vZ = w_source(i, j, s, kVZ) + dt * aZ;
+    }
+    if (drag) {
+      const Real ts = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
+      vR = dust::implicit_drag(vR, vgR(i, j), dt, ts);
+      vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
+      vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
+    }
+    w_out(i, j, s, kRho) = rho;
+    w_out(i, j, s, kVR) = vR;
+    w_out(i, j, s, kVphi) = vphi;
+    w_out(i, j, s, kVZ) = vZ;
+    if (update_q) {
+      Q_(i, j, s, kRho) = rho;
+      Q_(i, j, s, kMomR) = rho * vR;
+      Q_(i, j, s, kAngMom) = rho * vphi * R;
+      Q_(i, j, s, kMomZ) = rho * vZ;
+    }
+  });
+}
+
+void DustDynamics::step(double dt) {
+  // (i) first-order fluxes at t^n; (ii) half-step sources from P^n; (iii, iv) primitives + drag.
+  fill_ghosts(W);
+  compute_fluxes(W, false);
+  advance_stage(W, 0.5 * dt, W_half_, false);
+  // Boundary conditions again after step (iv); (v-viii) second-order fluxes at t^{n+1/2}.
+  fill_ghosts(W_half_);
+  compute_fluxes(W_half_, true);
+  advance_stage(W_half_, dt, W, true);
+  fill_ghosts(W);
+}
+
+double DustDynamics::max_dt() const {
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
+  auto W_ = W;
+  auto dR = grid_.dR, Rc = grid_.Rc, tan_te = grid_.tan_te;
+  auto nu = gas_.nu;
+  auto sc = schmidt_;
+  const Real ca = settings_.cfl_advection, cd = settings_.cfl_diffusion;
+  const bool diffuse = settings_.diffusion;
+  Real dt = std::numeric_limits<Real>::max();
+  Kokkos::parallel_reduce(
+      "disc::dust_max_dt",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
+      KOKKOS_LAMBDA(int i, int j, int s, Real& m) {
+        const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
+        const Real vR = math::fabs(W_(i, j, s, kVR)), vZ = math::fabs(W_(i, j, s, kVZ));
+        if (vR > 0) m = math::min(m, ca * dR(i) / vR);
+        if (vZ > 0) m = math::min(m, ca * dZ / vZ);
+        if (diffuse) {
+          const Real D = nu(i, j) / sc(s);
+          if (D > 0) m = math::min(m, cd * math::min(dR(i) * dR(i), dZ * dZ) / D);
+        }
+      },
+      Kokkos::Min<Real>(dt));
+  return grid_.comm().min(dt);
+}
+
+double DustDynamics::mass(int s) const {
+  auto Q_ = Q;
+  auto V = grid_.V;
+  Real m = 0;
+  par_reduce("disc::dust_mass", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
+             KOKKOS_LAMBDA(int i, int j, Real& acc) { acc += Q_(i, j, s, kRho) * V(i, j); }, m);
+  return grid_.comm().sum(m);
+}
+
+View<Real***> DustDynamics::stopping_times() const {
+  View<Real***> ts("dust::stopping_times", grid_.nr_total(), grid_.nt_total(), ns_);
+  auto rho_g = gas_.rho, cs2 = gas_.cs2;
+  auto sizes = sizes_;
+  const Real rho_m = settings_.rho_grain;
+  for_cells("disc::dust_stopping_times", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+    ts(i, j, s) = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
+  });
+  return ts;
+}
+
+}  // namespace mote::disc
