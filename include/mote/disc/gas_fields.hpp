@@ -19,21 +19,27 @@
 namespace mote::disc {
 
 struct GasFields {
-  RealView1 Sigma;             // (nr_total) surface density
-  RealView1 nu_mid;            // (nr_total) viscosity of the 1D evolution (eq. 26)
-  RealView2 rho;               // mass density
-  RealView2 cs2;               // isothermal sound speed squared
-  RealView2 T;                 // temperature [K]
-  RealView2 nu;                // kinematic viscosity
-  RealView2 vR, vphi, vZ;      // cylindrical velocity components
-  Real GM = 0;                 // G M_star, code units
-  Real column_fraction = 1;    // fraction of Sigma held by the grid's theta range
+  RealView1 Sigma;           // (nr_total) surface density
+  RealView1 nu_mid;          // (nr_total) viscosity of the 1D evolution (eq. 26)
+  RealView2 rho;             // mass density
+  RealView2 cs2;             // isothermal sound speed squared
+  RealView2 T;               // temperature [K]
+  RealView2 nu;              // kinematic viscosity
+  RealView2 vR, vphi, vZ;    // cylindrical velocity components
+  Real GM = 0;               // G M_star, code units
+  Real column_fraction = 1;  // fraction of Sigma held by the grid's theta range
 
   GasFields() = default;
   GasFields(int nr_total, int nt_total)
-      : Sigma("gas::Sigma", nr_total), nu_mid("gas::nu_mid", nr_total), rho("gas::rho", nr_total, nt_total),
-        cs2("gas::cs2", nr_total, nt_total), T("gas::T", nr_total, nt_total), nu("gas::nu", nr_total, nt_total),
-        vR("gas::vR", nr_total, nt_total), vphi("gas::vphi", nr_total, nt_total), vZ("gas::vZ", nr_total, nt_total) {}
+      : Sigma("gas::Sigma", nr_total),
+        nu_mid("gas::nu_mid", nr_total),
+        rho("gas::rho", nr_total, nt_total),
+        cs2("gas::cs2", nr_total, nt_total),
+        T("gas::T", nr_total, nt_total),
+        nu("gas::nu", nr_total, nt_total),
+        vR("gas::vR", nr_total, nt_total),
+        vphi("gas::vphi", nr_total, nt_total),
+        vZ("gas::vZ", nr_total, nt_total) {}
 };
 
 }  // namespace mote::disc

@@ -1,0 +1,131 @@
+// Deck tables [gas] and [star] of the gas disc (RBO24 sec. 3.3-3.5); see
+// include/mote/disc/gas_config.hpp.
+#include "mote/disc/gas_config.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mote::disc {
+
+GasBoundary gas_boundary(const std::string& name) {
+  if (name == "closed") return GasBoundary::Closed;
+  if (name == "zero_torque") return GasBoundary::ZeroTorque;
+  if (name == "extrapolate") return GasBoundary::Extrapolate;
+  if (name == "user") return GasBoundary::User;
+  throw core::DeckError("unknown gas boundary '" + name + "' (closed, zero_torque, extrapolate, user)");
+}
+
+void GasConfig::declare(core::DeckSchema& s) {
+  s.table("star", "The central star.");
+  if (!s.find_key("star", "mass"))
+    s.real("star.mass").default_value(1.0).greater_than(0.0).unit("M_sun").doc("Stellar mass M_star.");
+
+  s.table("gas",
+          "Gas disc: 1D viscous evolution of Sigma (RBO24 eq. 26), hydrostatic 2D density (eq. 33-37), "
+          "velocities (eq. 27-31), vertically isothermal temperature.");
+  s.real("gas.R_ref")
+      .default_value(1.0)
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Reference radius of the temperature, viscosity and surface-density power laws.");
+  s.real("gas.T_ref")
+      .default_value(100.0)
+      .greater_than(0.0)
+      .unit("K")
+      .doc("Temperature at R_ref (RBO24 default: 100 K at 1 au).");
+  s.real("gas.T_index").default_value(0.5).doc("T proportional to (R / R_ref)^-T_index (vertically isothermal).");
+  s.real("gas.h_ref")
+      .default_value(0.0)
+      .min(0.0)
+      .doc("Aspect ratio H / R = c_s / (Omega_K R) at R_ref; > 0 sets the temperature instead of T_ref.");
+  s.real("gas.mu").default_value(2.34).greater_than(0.0).doc("Mean molecular weight (c_s^2 = k_B T / (mu m_H)).");
+  s.string("gas.viscosity")
+      .default_value(std::string("alpha"))
+      .one_of({"alpha", "power_law"})
+      .doc(
+          "alpha: nu = alpha c_s H = alpha c_s^2 / Omega_K(R); power_law: nu = nu0 (R / R_ref)^nu_index (RBO24 sec. "
+          "3.4).");
+  s.real("gas.alpha").default_value(1e-3).min(0.0).doc("Shakura-Sunyaev alpha.");
+  s.real("gas.nu0")
+      .default_value(0.0)
+      .unit("code length^2 / code time")
+      .doc("nu at R_ref for viscosity = \"power_law\"; <= 0: alpha c_s^2 / Omega_K at R_ref.");
+  s.real("gas.nu_index").default_value(1.0).doc("Exponent of the power-law viscosity.");
+  s.real("gas.Sigma0")
+      .default_value(1.0)
+      .min(0.0)
+      .unit("code surface density")
+      .doc("Initial Sigma at R_ref (before the taper).");
+  s.real("gas.Sigma_index").default_value(1.0).doc("Initial Sigma proportional to (R / R_ref)^-Sigma_index.");
+  s.real("gas.R_c")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code length")
+      .doc("Taper exp(-(R / R_c)^(2 - Sigma_index)) of the initial Sigma (Lynden-Bell & Pringle); 0: none.");
+  const std::vector<std::string> bcs = {"closed", "zero_torque", "extrapolate", "user"};
+  s.string("gas.inner_boundary")
+      .default_value(std::string("extrapolate"))
+      .one_of(bcs)
+      .doc(
+          "Viscous boundary at R_in: closed (no mass flux), zero_torque (nu Sigma = 0), extrapolate "
+          "(R^1/2 nu Sigma continued as a limited power law: steady flow passes), user (problem hook).");
+  s.string("gas.outer_boundary")
+      .default_value(std::string("extrapolate"))
+      .one_of(bcs)
+      .doc("Viscous boundary at R_out (as inner_boundary).");
+  s.real("gas.cfl").default_value(0.5).greater_than(0.0).max(1.0).doc(
+      "Fraction of the explicit (positivity) limit of eq. 26.");
+  s.real("gas.Sigma_floor")
+      .default_value(1e-100)
+      .min(0.0)
+      .unit("code surface density")
+      .doc("Floor of Sigma after each step.");
+  s.real("gas.rho_floor")
+      .default_value(1e-100)
+      .greater_than(0.0)
+      .unit("code density")
+      .doc("Floor of the hydrostatic density.");
+}
+
+void GasConfig::derive(const units::UnitSystem& u, double h_ref) {
+  const double m_gas = mu * units::cgs::m_H / u.mass;                           // code mass
+  const double k_B = units::cgs::k_B / (u.mass * u.velocity() * u.velocity());  // code energy / K
+  cs2_to_T = m_gas / k_B;
+  if (h_ref > 0) {
+    cs2_ref = h_ref * h_ref * GM / R_ref;
+    T_ref = cs2_to_T * cs2_ref;
+  } else {
+    cs2_ref = T_ref / cs2_to_T;
+  }
+  if (viscosity == ViscosityModel::PowerLaw && !(nu0 > 0))
+    nu0 = alpha * cs2_ref / std::sqrt(GM / (R_ref * R_ref * R_ref));
+}
+
+GasConfig GasConfig::from_deck(const core::Deck& d, const units::UnitSystem& u) {
+  GasConfig c;
+  c.GM = u.gravitational_constant() * d.real("star.mass") * units::cgs::M_sun / u.mass;
+  c.R_ref = d.real("gas.R_ref");
+  c.T_ref = d.real("gas.T_ref");
+  c.T_index = d.real("gas.T_index");
+  c.mu = d.real("gas.mu");
+  c.viscosity = d.string("gas.viscosity") == "alpha" ? ViscosityModel::Alpha : ViscosityModel::PowerLaw;
+  c.alpha = d.real("gas.alpha");
+  c.nu0 = d.real("gas.nu0");
+  c.nu_index = d.real("gas.nu_index");
+  c.Sigma0 = d.real("gas.Sigma0");
+  c.Sigma_index = d.real("gas.Sigma_index");
+  c.R_c = d.real("gas.R_c");
+  c.inner = gas_boundary(d.string("gas.inner_boundary"));
+  c.outer = gas_boundary(d.string("gas.outer_boundary"));
+  c.cfl = d.real("gas.cfl");
+  c.Sigma_floor = d.real("gas.Sigma_floor");
+  c.rho_floor = d.real("gas.rho_floor");
+  if (c.viscosity == ViscosityModel::Alpha && !(c.alpha > 0))
+    throw core::DeckError("gas.alpha must be > 0 with gas.viscosity = \"alpha\"");
+  if (c.viscosity == ViscosityModel::PowerLaw && !(c.nu0 > 0) && !(c.alpha > 0))
+    throw core::DeckError("gas.viscosity = \"power_law\" needs gas.nu0 > 0 or gas.alpha > 0");
+  c.derive(u, d.real("gas.h_ref"));
+  return c;
+}
+
+}  // namespace mote::disc
