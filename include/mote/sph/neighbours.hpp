@@ -1,0 +1,77 @@
+// O(N) neighbour finding for SPH. Particles are binned on the device into cells
+// of about the smallest kernel support (cell keys sorted with Kokkos::BinSort);
+// each particle a gathers the candidates within S_a = R h_a (1 + skin) + delta,
+// and the list is made symmetric by adding, for every pair found only from the
+// larger-h side, the reverse entry. The list of a therefore holds every b with
+// |r_ab| < max(S_a, S_b): exactly what the density (gather, h_a) and the
+// symmetric force sums of PL15 eq. 25, 27, 34 (h_a and h_b) need, for h
+// varying by any factor between particles. Every entry carries the periodic
+// image of b it refers to (supports up to two box lengths; a particle may
+// then also neighbour its own images). The list stays
+// valid while every particle moved less than delta/2 and no h grew beyond
+// h_build (1 + skin); positions are wrapped into the box only at a rebuild,
+// so that the stored images stay correct in between. A rebuild traverses the
+// cells once, into per-particle segments sized from the previous list, and
+// compacts them; the first build (or an overflowing segment) uses an exact
+// count-then-fill pair of traversals.
+#pragma once
+
+#include "mote/core/kokkos_types.hpp"
+#include "mote/sph/box.hpp"
+#include "mote/sph/kernels.hpp"
+#include "mote/sph/particles.hpp"
+
+namespace mote::sph {
+
+/// Uniform cell grid over the particles (device-copyable).
+struct CellGrid {
+  int nc[3] = {1, 1, 1};
+  Real width[3] = {1.0, 1.0, 1.0};
+  Real origin[3] = {0.0, 0.0, 0.0};
+  View<int*> cell_start;      ///< ncell + 1 offsets into cell_particles
+  View<int*> cell_particles;  ///< particle indices sorted by cell
+
+  KOKKOS_INLINE_FUNCTION int coord(Real x, int d) const {
+    int c = static_cast<int>((x - origin[d]) / width[d]);
+    if (c < 0) c = 0;
+    if (c >= nc[d]) c = nc[d] - 1;
+    return c;
+  }
+};
+
+class NeighbourList {
+ public:
+  /// Wraps the positions into the box and builds the list for them and the
+  /// current smoothing lengths.
+  void build(Particles& p, const Box& box, KernelType kernel, Real skin);
+
+  /// True if the list no longer covers all pairs within the kernel support:
+  /// a particle moved more than delta/2 or an h grew past its cover.
+  bool needs_rebuild(const Particles& p, const Box& box) const;
+
+  bool built() const { return n_ == 0 ? false : offsets.extent(0) == static_cast<std::size_t>(n_ + 1); }
+  int size() const { return n_; }
+  long long entries() const { return entries_; }
+  int builds() const { return builds_; }
+  /// Builds that took the exact two-traversal path (first build, overflow).
+  int exact_builds() const { return exact_builds_; }
+  std::size_t bytes() const;
+
+  View<int*> offsets;          ///< n + 1 CSR offsets
+  View<int*> neigh;            ///< neighbour indices (self only through a periodic image)
+  View<unsigned char*> image;  ///< image code of each entry (Box::image_shift)
+  View<int*> counts;           ///< list length per particle (sizes the next build)
+  RealView1 h_cover;           ///< largest h each particle's list stays valid for
+  RealView2 x_build;           ///< positions at build time
+  Real delta = 0.0;            ///< absolute displacement skin
+  CellGrid grid;
+
+ private:
+  int n_ = 0;
+  int dim_ = 0;
+  long long entries_ = 0;
+  int builds_ = 0;
+  int exact_builds_ = 0;
+};
+
+}  // namespace mote::sph

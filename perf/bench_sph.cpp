@@ -1,0 +1,169 @@
+// Benchmarks of the SPH engine (PL15 sec. 3 hydrodynamics), Serial or any
+// Kokkos backend: one full step (neighbour check, density + Omega, EOS,
+// forces, external forces, kick-drift-kick) on
+//   * a 3D uniform periodic box of ~1e5 particles (M4, h_fact 1.2; and M6,
+//     h_fact 1.0, ~113 neighbours, to compare with Phantom's settling column),
+//   * the 2D settling column of PL15 sec. 4.4 (32 x 111, M6, isothermal,
+//     disc gravity eq. 53),
+// plus the three phases separately (list build, density, forces).
+// Counters: particle-updates/s (particles x steps / wall time), neighbour
+// pairs/s (pairs inside the kernel support, counted from both sides, per
+// step), bytes/particle (particle data + neighbour list).
+//   bench_sph --benchmark_out=sph.json --benchmark_out_format=json
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "mote/sph/density.hpp"
+#include "mote/sph/external.hpp"
+#include "mote/sph/forces.hpp"
+#include "mote/sph/lattice.hpp"
+#include "mote/sph/sph_system.hpp"
+
+namespace {
+
+using mote::Real;
+using namespace mote::sph;
+
+std::unique_ptr<SphSystem> make_box(KernelType kernel, int n_side, Real skin = 0.1) {
+  SphConfig cfg;
+  cfg.skin = skin;
+  cfg.dim = 3;
+  cfg.kernel = kernel;
+  cfg.eos = EosType::Adiabatic;
+  Box box;
+  box.dim = 3;
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] = 0.0;
+    box.hi[d] = 1.0;
+    box.periodic[d] = true;
+  }
+  const Lattice lat = cubic_lattice(box, 1.0 / n_side);
+  const int n = lat.size();
+  ParticleSetup s;
+  s.dim = 3;
+  s.x = lat.x;
+  s.m = equal_masses(n, 1.0);
+  s.h.assign(n, cfg.effective_hfact() * lat.dx);
+  s.u.assign(n, 1.0);
+  std::mt19937 rng(1);
+  std::normal_distribution<Real> g(0.0, 0.05);
+  for (int i = 0; i < 3 * n; ++i) s.v.push_back(g(rng));  // subsonic noise: lists get reused
+  auto sys = std::make_unique<SphSystem>(cfg, lat.box);
+  sys->set_particles(s);
+  sys->initialise();
+  return sys;
+}
+
+std::unique_ptr<SphSystem> make_column(int nx) {
+  const Real gm = 1.0, r0 = 5.0, rho0 = 1e-3, H = 0.25;
+  const Real cs = H * std::sqrt(gm / (r0 * r0 * r0));
+  SphConfig cfg;
+  cfg.dim = 2;
+  cfg.kernel = KernelType::M6;
+  cfg.eos = EosType::Isothermal;
+  cfg.cs_iso = cs;
+  cfg.damping = 0.03;
+  Box box;
+  box.dim = 2;
+  box.lo[0] = -0.25;
+  box.hi[0] = 0.25;
+  box.periodic[0] = true;
+  box.lo[1] = -3 * H;
+  box.hi[1] = 3 * H;
+  Lattice lat = hexagonal_lattice(box, 0.5 / nx);
+  auto rho = [=](Real z) { return rho0 * std::exp(-z * z / (2 * H * H)); };
+  stretch_map(lat, 1, box.lo[1], box.hi[1], rho);
+  const int n = lat.size();
+  ParticleSetup s;
+  s.dim = 2;
+  s.x = lat.x;
+  s.m = equal_masses(n, lat.box.length(0) * integrate_profile(rho, box.lo[1], box.hi[1]));
+  for (int i = 0; i < n; ++i) s.h.push_back(std::sqrt(s.m[i] / rho(lat.x[2 * i + 1])));
+  auto sys = std::make_unique<SphSystem>(cfg, lat.box);
+  sys->set_particles(s);
+  sys->add_external_force(disc_vertical_gravity(gm, r0));
+  sys->initialise();
+  for (int i = 0; i < 20; ++i) sys->step();  // leave the start-up transient
+  return sys;
+}
+
+void set_counters(benchmark::State& state, const SphSystem& sys) {
+  const Real n = sys.particles().n;
+  const Real pairs = static_cast<Real>(
+      count_interacting_pairs(sys.particles(), sys.neighbours(), sys.box(), const_cast<SphSystem&>(sys).config()));
+  state.counters["particles"] = n;
+  state.counters["neighbours_per_particle"] = pairs / n;
+  state.counters["particle_updates_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["pairs_per_s"] = benchmark::Counter(pairs, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bytes_per_particle"] = sys.bytes_per_particle();
+  state.counters["list_builds"] = sys.neighbours().builds();
+  state.counters["density_passes"] = sys.density_passes();
+}
+
+void BM_SphStep3DBox(benchmark::State& state) {
+  const KernelType kernel = state.range(0) == 0 ? KernelType::M4 : KernelType::M6;
+  auto sys = make_box(kernel, static_cast<int>(state.range(1)), 0.01 * state.range(2));
+  for (auto _ : state) {
+    sys->step();
+    Kokkos::fence();
+  }
+  set_counters(state, *sys);
+}
+
+void BM_SphStep2DColumn(benchmark::State& state) {
+  auto sys = make_column(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    sys->step();
+    Kokkos::fence();
+  }
+  set_counters(state, *sys);
+}
+
+void BM_SphPhases3DBox(benchmark::State& state) {
+  auto sys = make_box(KernelType::M4, static_cast<int>(state.range(1)));
+  Particles& p = sys->particles();
+  NeighbourList nl = sys->neighbours();
+  const SphConfig cfg = sys->config();
+  for (auto _ : state) {
+    switch (state.range(0)) {
+      case 0:
+        nl.build(p, sys->box(), cfg.kernel, cfg.skin);
+        break;
+      case 1:
+        compute_density(p, nl, sys->box(), cfg);
+        break;
+      default:
+        compute_forces(p, nl, sys->box(), cfg, p.v, p.u);
+        break;
+    }
+    Kokkos::fence();
+  }
+  state.SetLabel(state.range(0) == 0 ? "neighbour build" : (state.range(0) == 1 ? "density" : "forces"));
+  state.counters["particle_updates_per_s"] = benchmark::Counter(p.n, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+BENCHMARK(BM_SphStep3DBox)
+    ->Args({0, 46, 10})
+    ->Args({1, 46, 10})
+    ->Args({0, 46, 5})
+    ->Args({0, 46, 20})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(10);
+BENCHMARK(BM_SphStep2DColumn)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(200);
+BENCHMARK(BM_SphPhases3DBox)->Args({0, 46})->Args({1, 46})->Args({2, 46})->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Kokkos::initialize(argc, argv);
+  {
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+  }
+  Kokkos::finalize();
+  return 0;
+}

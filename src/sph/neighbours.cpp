@@ -1,0 +1,447 @@
+// Cell binning (Kokkos::BinSort on cell keys) and symmetric CSR neighbour list
+// with count-then-fill; see include/mote/sph/neighbours.hpp for the method.
+#include "mote/sph/neighbours.hpp"
+
+#include <Kokkos_Sort.hpp>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mote/core/loops.hpp"
+
+namespace mote::sph {
+
+// A named namespace: nvcc requires the functions that enclose extended
+// (KOKKOS_LAMBDA) lambdas to have external linkage.
+namespace detail {
+
+/// BinSort operator for integer cell keys; inside a cell particles keep their
+/// index order, so the list is identical on every backend.
+struct CellKeyBinOp {
+  int nbins = 0;
+  CellKeyBinOp() = default;
+  explicit CellKeyBinOp(int n) : nbins(n) {}
+  template <class ViewType>
+  KOKKOS_INLINE_FUNCTION int bin(ViewType& keys, const int& i) const {
+    return keys(i);
+  }
+  KOKKOS_INLINE_FUNCTION int max_bins() const { return nbins; }
+  template <class ViewType, class I1, class I2>
+  KOKKOS_INLINE_FUNCTION bool operator()(ViewType& /*keys*/, const I1& i1, const I2& i2) const {
+    return i1 < i2;
+  }
+};
+
+KOKKOS_INLINE_FUNCTION int ifloor(Real v) {
+  int i = static_cast<int>(v);
+  return i > v ? i - 1 : i;
+}
+
+/// Calls f(b, image) for every particle image in the cells that intersect
+/// the ball of radius `search` around xa. In a periodic direction the cells
+/// are visited with their image shift (-2 .. +2 box lengths), so a particle
+/// (also a itself) can appear with several images when the search radius
+/// exceeds half the box.
+template <int Dim, class F>
+KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const Real* xa, Real search, F&& f) {
+  int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  Real rel[3] = {0, 0, 0};  // xa relative to the grid origin
+  for (int d = 0; d < Dim; ++d) {
+    rel[d] = xa[d] - g.origin[d];
+    lo[d] = ifloor((rel[d] - search) / g.width[d]);
+    hi[d] = ifloor((rel[d] + search) / g.width[d]);
+    if (box.periodic[d]) {
+      if (lo[d] < -2 * g.nc[d]) lo[d] = -2 * g.nc[d];
+      if (hi[d] > 3 * g.nc[d] - 1) hi[d] = 3 * g.nc[d] - 1;
+    } else {
+      if (lo[d] < 0) lo[d] = 0;
+      if (hi[d] > g.nc[d] - 1) hi[d] = g.nc[d] - 1;
+    }
+  }
+  const Real s2 = search * search;
+  // Squared distance from xa to the slab of cell i along d (0 inside).
+  auto gap2 = [&](int i, int d) {
+    const Real clo = i * g.width[d] - rel[d];
+    const Real chi = clo + g.width[d];
+    const Real gap = clo > 0.0 ? clo : (chi < 0.0 ? -chi : 0.0);
+    return gap * gap;
+  };
+  auto image_of = [&](int i, int d) {
+    // floor(i / nc) for i in [-2 nc, 3 nc)
+    return i < 0 ? -((-i + g.nc[d] - 1) / g.nc[d]) : i / g.nc[d];
+  };
+  for (int i2 = lo[2]; i2 <= hi[2]; ++i2) {
+    const Real g2 = Dim > 2 ? gap2(i2, 2) : 0.0;
+    if (g2 >= s2) continue;
+    const int sh2 = Dim > 2 ? image_of(i2, 2) : 0;
+    const int c2 = i2 - sh2 * g.nc[2];
+    for (int i1 = lo[1]; i1 <= hi[1]; ++i1) {
+      const Real g1 = g2 + (Dim > 1 ? gap2(i1, 1) : 0.0);
+      if (g1 >= s2) continue;
+      const int sh1 = Dim > 1 ? image_of(i1, 1) : 0;
+      const int c1 = i1 - sh1 * g.nc[1];
+      for (int i0 = lo[0]; i0 <= hi[0]; ++i0) {
+        if (g1 + gap2(i0, 0) >= s2) continue;
+        const int sh0 = image_of(i0, 0);
+        const int c0 = i0 - sh0 * g.nc[0];
+        const int code = (sh0 + 2) + 5 * (sh1 + 2) + 25 * (sh2 + 2);
+        const int cell = c0 + g.nc[0] * (c1 + g.nc[1] * c2);
+        const int end = g.cell_start(cell + 1);
+        for (int s = g.cell_start(cell); s < end; ++s) f(g.cell_particles(s), code);
+      }
+    }
+  }
+}
+
+/// Returns true when the exact count-then-fill path was taken.
+template <int Dim>
+bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Real skin,
+                const View<int*>& prev_counts) {
+  const int n = p.n;
+  const auto x = p.x;
+  const auto h = p.h;
+  par_for(
+      "sph::neighbour_wrap", 0, n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < Dim; ++d) x(i, d) = box.wrap(x(i, d), d);
+      });
+
+  Real hmin = 0.0, hmax = 0.0;
+  par_reduce(
+      "sph::neighbour_hmin", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = h(i) < r ? h(i) : r; }, Kokkos::Min<Real>(hmin));
+  par_reduce(
+      "sph::neighbour_hmax", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = h(i) > r ? h(i) : r; }, Kokkos::Max<Real>(hmax));
+  if (!(hmin > 0.0)) throw std::runtime_error("sph::NeighbourList: smoothing lengths must be positive");
+
+  const Real eps = skin;
+  const Real delta = skin * radius * hmin;
+  const Real s_min = radius * hmin * (1.0 + eps) + delta;
+  const Real s_max = radius * hmax * (1.0 + eps) + delta;
+
+  Real xmin[3] = {0, 0, 0}, xmax[3] = {0, 0, 0}, vol = 1.0;
+  for (int d = 0; d < Dim; ++d) {
+    if (box.periodic[d]) {
+      if (s_max >= 2.0 * box.length(d)) {
+        throw std::runtime_error("sph::NeighbourList: kernel support " + std::to_string(s_max) +
+                                 " exceeds twice the periodic box length in direction " + std::to_string(d));
+      }
+      xmin[d] = box.lo[d];
+      xmax[d] = box.hi[d];
+    } else {
+      Real lo = 0.0, hi = 0.0;
+      par_reduce(
+          "sph::neighbour_xmin", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = x(i, d) < r ? x(i, d) : r; },
+          Kokkos::Min<Real>(lo));
+      par_reduce(
+          "sph::neighbour_xmax", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = x(i, d) > r ? x(i, d) : r; },
+          Kokkos::Max<Real>(hi));
+      xmin[d] = lo;
+      xmax[d] = hi;
+    }
+    vol *= std::max(xmax[d] - xmin[d], s_min);
+  }
+  // Cells of half the smallest support (the search culls cells outside the
+  // ball), but never many more cells than particles.
+  const Real target = std::max(0.5 * s_min, std::pow(vol / std::max(n, 1), 1.0 / Dim));
+  CellGrid g;
+  long long ncell = 1;
+  for (int d = 0; d < Dim; ++d) {
+    const Real ext = xmax[d] - xmin[d];
+    if (box.periodic[d]) {
+      g.nc[d] = std::max(1, static_cast<int>(std::floor(ext / target)));
+      g.width[d] = ext / g.nc[d];
+    } else {
+      g.nc[d] = static_cast<int>(std::floor(ext / target)) + 1;
+      g.width[d] = target;
+    }
+    g.origin[d] = xmin[d];
+    ncell *= g.nc[d];
+  }
+  if (ncell > (1LL << 30)) throw std::runtime_error("sph::NeighbourList: too many cells");
+  const int nc_total = static_cast<int>(ncell);
+
+  // Bin particles by cell key.
+  IntView1 keys("sph::cell_key", n);
+  par_for(
+      "sph::neighbour_keys", 0, n, KOKKOS_LAMBDA(int i) {
+        int key = 0, stride = 1;
+        for (int d = 0; d < Dim; ++d) {
+          key += stride * g.coord(x(i, d), d);
+          stride *= g.nc[d];
+        }
+        keys(i) = key;
+      });
+  Kokkos::BinSort<IntView1, CellKeyBinOp> sorter(keys, CellKeyBinOp(nc_total), true);
+  sorter.create_permute_vector();
+  const auto perm = sorter.get_permute_vector();
+  const auto bin_offsets = sorter.get_bin_offsets();
+  g.cell_start = View<int*>("sph::cell_start", nc_total + 1);
+  g.cell_particles = View<int*>("sph::cell_particles", n);
+  const auto cell_start = g.cell_start;
+  const auto cell_particles = g.cell_particles;
+  par_for(
+      "sph::neighbour_cells", 0, n, KOKKOS_LAMBDA(int i) { cell_particles(i) = static_cast<int>(perm(i)); });
+  par_for(
+      "sph::neighbour_cell_start", 0, nc_total + 1,
+      KOKKOS_LAMBDA(int c) { cell_start(c) = c < nc_total ? static_cast<int>(bin_offsets(c)) : n; });
+
+  const Real rfac = radius * (1.0 + eps);
+  IntView1 ngather("sph::ngather", n);
+  IntView1 nreverse("sph::nreverse", n);
+  View<int*> offsets("sph::neighbour_offsets", n + 1);
+  View<int*> neigh;
+  View<unsigned char*> image;
+  bool built = false;
+
+  if (prev_counts.extent(0) == static_cast<std::size_t>(n)) {
+    // Single traversal into segments sized from the previous list (+25% + 8):
+    // gather entries fill a segment from the front, reverse entries from the
+    // back; a segment that overflows sends the whole build to the exact
+    // count-then-fill path below. The segments are then compacted.
+    View<int*> slack("sph::neighbour_slack", n + 1);
+    Kokkos::parallel_scan(
+        "sph::neighbour_slack", Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, int& acc, bool final) {
+          if (final) slack(i) = acc;
+          if (i < n) acc += prev_counts(i) + prev_counts(i) / 4 + 8;
+        });
+    int total_slack = 0;
+    Kokkos::deep_copy(total_slack, Kokkos::subview(slack, n));
+    View<int*> sneigh(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_slack_list"), total_slack);
+    View<unsigned char*> simage(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_slack_images"),
+                                total_slack);
+    par_for(
+        "sph::neighbour_gather", 0, n, KOKKOS_LAMBDA(int a) {
+          Real xa[3] = {0, 0, 0};
+          for (int d = 0; d < Dim; ++d) xa[d] = x(a, d);
+          const Real sa = rfac * h(a) + delta;
+          const Real sa2 = sa * sa;
+          const int begin = slack(a), cap = slack(a + 1) - slack(a);
+          int count = 0;
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
+            if (b == a && code == no_image()) return;
+            Real r2 = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              r2 += dx * dx;
+            }
+            if (r2 < sa2) {
+              if (count < cap) {
+                sneigh(begin + count) = b;
+                simage(begin + count) = static_cast<unsigned char>(code);
+              }
+              ++count;
+              const Real sb = rfac * h(b) + delta;
+              if (r2 >= sb * sb) {
+                const int k = Kokkos::atomic_fetch_add(&nreverse(b), 1);
+                const int e = slack(b + 1) - 1 - k;
+                if (e >= slack(b)) {
+                  sneigh(e) = a;
+                  simage(e) = static_cast<unsigned char>(mirror_image(code));
+                }
+              }
+            }
+          });
+          ngather(a) = count;
+        });
+    int overflow = 0;
+    par_reduce(
+        "sph::neighbour_overflow", 0, n,
+        KOKKOS_LAMBDA(int a, int& c) { c += ngather(a) + nreverse(a) > slack(a + 1) - slack(a) ? 1 : 0; }, overflow);
+    if (overflow == 0) {
+      Kokkos::parallel_scan(
+          "sph::neighbour_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1),
+          KOKKOS_LAMBDA(int i, int& acc, bool final) {
+            if (final) offsets(i) = acc;
+            if (i < n) acc += ngather(i) + nreverse(i);
+          });
+      int total = 0;
+      Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
+      neigh = View<int*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbours"), std::max(total, 1));
+      image = View<unsigned char*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_images"),
+                                   std::max(total, 1));
+      const auto nb = neigh;
+      const auto im = image;
+      par_for(
+          "sph::neighbour_compact", 0, n, KOKKOS_LAMBDA(int a) {
+            int pos = offsets(a);
+            for (int k = 0; k < ngather(a); ++k, ++pos) {
+              nb(pos) = sneigh(slack(a) + k);
+              im(pos) = simage(slack(a) + k);
+            }
+            for (int e = slack(a + 1) - nreverse(a); e < slack(a + 1); ++e, ++pos) {
+              nb(pos) = sneigh(e);
+              im(pos) = simage(e);
+            }
+          });
+      built = true;
+    } else {
+      Kokkos::deep_copy(nreverse, 0);
+    }
+  }
+
+  if (!built) {
+    // Exact count-then-fill: gather entries of a, and reverse entries for
+    // pairs that only the particle with the larger search radius finds.
+    par_for(
+        "sph::neighbour_count", 0, n, KOKKOS_LAMBDA(int a) {
+          Real xa[3] = {0, 0, 0};
+          for (int d = 0; d < Dim; ++d) xa[d] = x(a, d);
+          const Real sa = rfac * h(a) + delta;
+          const Real sa2 = sa * sa;
+          int count = 0;
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
+            if (b == a && code == no_image()) return;
+            Real r2 = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              r2 += dx * dx;
+            }
+            if (r2 < sa2) {
+              ++count;
+              const Real sb = rfac * h(b) + delta;
+              if (r2 >= sb * sb) Kokkos::atomic_add(&nreverse(b), 1);
+            }
+          });
+          ngather(a) = count;
+        });
+    Kokkos::parallel_scan(
+        "sph::neighbour_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, int& acc, bool final) {
+          if (final) offsets(i) = acc;
+          if (i < n) acc += ngather(i) + nreverse(i);
+        });
+    int total = 0;
+    Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
+    neigh = View<int*>("sph::neighbours", std::max(total, 1));
+    image = View<unsigned char*>("sph::neighbour_images", std::max(total, 1));
+    const auto nb = neigh;
+    const auto im = image;
+    IntView1 rfill("sph::rfill", n);
+    par_for(
+        "sph::neighbour_fill", 0, n, KOKKOS_LAMBDA(int a) {
+          Real xa[3] = {0, 0, 0};
+          for (int d = 0; d < Dim; ++d) xa[d] = x(a, d);
+          const Real sa = rfac * h(a) + delta;
+          const Real sa2 = sa * sa;
+          int pos = offsets(a);
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
+            if (b == a && code == no_image()) return;
+            Real r2 = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              r2 += dx * dx;
+            }
+            if (r2 < sa2) {
+              im(pos) = static_cast<unsigned char>(code);
+              nb(pos++) = b;
+              const Real sb = rfac * h(b) + delta;
+              if (r2 >= sb * sb) {
+                const int k = Kokkos::atomic_fetch_add(&rfill(b), 1);
+                const int e = offsets(b) + ngather(b) + k;
+                nb(e) = a;
+                im(e) = static_cast<unsigned char>(mirror_image(code));
+              }
+            }
+          });
+        });
+  }
+  // Reverse entries arrive in any order on parallel backends: sort them.
+  par_for(
+      "sph::neighbour_sort_reverse", 0, n, KOKKOS_LAMBDA(int a) {
+        const int b0 = offsets(a) + ngather(a);
+        const int e = offsets(a + 1);
+        for (int i = b0 + 1; i < e; ++i) {
+          const int key = neigh(i);
+          const unsigned char img = image(i);
+          int j = i - 1;
+          while (j >= b0 && (neigh(j) > key || (neigh(j) == key && image(j) > img))) {
+            neigh(j + 1) = neigh(j);
+            image(j + 1) = image(j);
+            --j;
+          }
+          neigh(j + 1) = key;
+          image(j + 1) = img;
+        }
+      });
+
+  RealView1 h_cover("sph::h_cover", n);
+  RealView2 x_build("sph::x_build", n, Dim);
+  par_for(
+      "sph::neighbour_save", 0, n, KOKKOS_LAMBDA(int a) {
+        h_cover(a) = h(a) * (1.0 + eps);
+        for (int d = 0; d < Dim; ++d) x_build(a, d) = x(a, d);
+      });
+
+  View<int*> counts("sph::neighbour_counts", n);
+  par_for(
+      "sph::neighbour_counts", 0, n, KOKKOS_LAMBDA(int a) { counts(a) = offsets(a + 1) - offsets(a); });
+  nl.counts = counts;
+  nl.offsets = offsets;
+  nl.neigh = neigh;
+  nl.image = image;
+  nl.h_cover = h_cover;
+  nl.x_build = x_build;
+  nl.delta = delta;
+  nl.grid = g;
+  return !built;
+}
+
+}  // namespace detail
+
+void NeighbourList::build(Particles& p, const Box& box, KernelType kernel, Real skin) {
+  if (p.n <= 0) throw std::runtime_error("sph::NeighbourList: no particles");
+  const Real radius = kernel_radius(kernel);
+  // Previous per-particle list sizes size the single-traversal build.
+  const View<int*> prev = (n_ == p.n && dim_ == p.dim) ? counts : View<int*>();
+  bool exact = true;
+  switch (p.dim) {
+    case 1:
+      exact = detail::build_impl<1>(*this, p, box, radius, skin, prev);
+      break;
+    case 2:
+      exact = detail::build_impl<2>(*this, p, box, radius, skin, prev);
+      break;
+    case 3:
+      exact = detail::build_impl<3>(*this, p, box, radius, skin, prev);
+      break;
+    default:
+      throw std::invalid_argument("sph::NeighbourList: dimension must be 1, 2 or 3");
+  }
+  n_ = p.n;
+  dim_ = p.dim;
+  int total = 0;
+  Kokkos::deep_copy(total, Kokkos::subview(offsets, n_));
+  entries_ = total;
+  ++builds_;
+  if (exact) ++exact_builds_;
+}
+
+bool NeighbourList::needs_rebuild(const Particles& p, const Box& /*box*/) const {
+  if (!built() || p.n != n_ || p.dim != dim_) return true;
+  const auto x = p.x;
+  const auto h = p.h;
+  const auto xb = x_build;
+  const auto hc = h_cover;
+  const int dim = dim_;
+  const Real lim2 = 0.25 * delta * delta;
+  int bad = 0;
+  par_reduce(
+      "sph::neighbour_check", 0, n_,
+      KOKKOS_LAMBDA(int a, int& cnt) {
+        Real r2 = 0.0;
+        for (int d = 0; d < dim; ++d) {
+          const Real dx = x(a, d) - xb(a, d);  // positions are not wrapped between builds
+          r2 += dx * dx;
+        }
+        if (r2 > lim2 || h(a) > hc(a)) ++cnt;
+      },
+      bad);
+  return bad > 0;
+}
+
+std::size_t NeighbourList::bytes() const {
+  return image.extent(0) +
+         sizeof(int) * (offsets.extent(0) + neigh.extent(0) + counts.extent(0) + grid.cell_start.extent(0) +
+                        grid.cell_particles.extent(0)) +
+         sizeof(Real) * (h_cover.extent(0) + x_build.extent(0) * x_build.extent(1));
+}
+
+}  // namespace mote::sph

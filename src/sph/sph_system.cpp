@@ -1,0 +1,234 @@
+// Kick-drift-kick leapfrog driver of the SPH engine (see sph_system.hpp).
+#include "mote/sph/sph_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mote/core/loops.hpp"
+#include "mote/sph/density.hpp"
+#include "mote/sph/forces.hpp"
+#include "mote/sph/timestep.hpp"
+
+namespace mote::sph {
+
+namespace {
+
+template <class V>
+typename V::HostMirror to_host(const V& v) {
+  auto h = Kokkos::create_mirror(v);  // always a copy, also on host backends
+  Kokkos::deep_copy(h, v);
+  return h;
+}
+
+}  // namespace
+
+SphSystem::SphSystem(const SphConfig& cfg, const Box& box) : cfg_(cfg), box_(box) {
+  if (cfg_.dim < 1 || cfg_.dim > 3) throw std::invalid_argument("sph: dimension must be 1, 2 or 3");
+  box_.dim = cfg_.dim;
+}
+
+void SphSystem::set_particles(const ParticleSetup& s) {
+  const int n = s.size();
+  const int dim = cfg_.dim;
+  if (s.dim != dim) throw std::invalid_argument("sph: particle set-up dimension differs from the configuration");
+  if (n <= 0 || static_cast<int>(s.x.size()) != n * dim || static_cast<int>(s.h.size()) != n) {
+    throw std::invalid_argument("sph: particle set-up needs x (n*dim), m (n) and h (n)");
+  }
+  p_.allocate(n, dim);
+  auto x = Kokkos::create_mirror_view(p_.x);
+  auto v = Kokkos::create_mirror_view(p_.v);
+  auto m = Kokkos::create_mirror_view(p_.m);
+  auto h = Kokkos::create_mirror_view(p_.h);
+  auto u = Kokkos::create_mirror_view(p_.u);
+  auto type = Kokkos::create_mirror_view(p_.type);
+  auto id = Kokkos::create_mirror_view(p_.id);
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < dim; ++d) {
+      x(i, d) = box_.wrap(s.x[i * dim + d], d);
+      v(i, d) = s.v.empty() ? 0.0 : s.v[i * dim + d];
+    }
+    m(i) = s.m[i];
+    h(i) = s.h[i];
+    u(i) = s.u.empty() ? 0.0 : s.u[i];
+    type(i) = s.type.empty() ? kGas : s.type[i];
+    id(i) = i;
+  }
+  Kokkos::deep_copy(p_.x, x);
+  Kokkos::deep_copy(p_.v, v);
+  Kokkos::deep_copy(p_.m, m);
+  Kokkos::deep_copy(p_.h, h);
+  Kokkos::deep_copy(p_.u, u);
+  Kokkos::deep_copy(p_.type, type);
+  Kokkos::deep_copy(p_.id, id);
+  Kokkos::deep_copy(p_.alpha, cfg_.alpha);
+  Kokkos::deep_copy(p_.omega, 1.0);
+  divv_old_ = RealView1("sph::divv_old", n);
+  nl_ = NeighbourList();
+  time_ = 0.0;
+  steps_ = 0;
+}
+
+void SphSystem::update_density() {
+  density_passes_ = 0.0;
+  for (int pass = 0; pass < 20; ++pass) {
+    if (nl_.needs_rebuild(p_, box_)) nl_.build(p_, box_, cfg_.kernel, cfg_.skin);
+    const DensityResult r = compute_density(p_, nl_, box_, cfg_);
+    density_passes_ += r.mean_iterations;
+    if (r.outside_cover == 0) {
+      if (r.not_converged > 0) {
+        throw std::runtime_error("sph: h-rho iteration did not converge for " + std::to_string(r.not_converged) +
+                                 " particles");
+      }
+      return;
+    }
+  }
+  throw std::runtime_error("sph: smoothing lengths kept outgrowing the neighbour list");
+}
+
+void SphSystem::compute_accelerations(const RealView2& vel, const RealView1& u) {
+  update_density();
+  update_eos(p_, cfg_, u);
+  compute_forces(p_, nl_, box_, cfg_, vel, u);
+  for (const auto& f : external_) f(p_, vel, time_);
+  if (cfg_.damping > 0.0) apply_damping(p_, vel, cfg_.damping);
+}
+
+void SphSystem::initialise() {
+  if (p_.n == 0) throw std::runtime_error("sph: initialise() before set_particles()");
+  compute_accelerations(p_.v, p_.u);
+  Kokkos::deep_copy(divv_old_, p_.divv);
+  dt_next_ = timestep();
+}
+
+Real SphSystem::timestep() const {
+  Real dt = compute_timestep(p_, cfg_);
+  for (const auto& c : dt_hooks_) dt = std::min(dt, c(p_));
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw std::runtime_error("sph: invalid time-step");
+  return dt;
+}
+
+Real SphSystem::step() {
+  const Real dt = dt_next_;
+  const int dim = p_.dim;
+  const bool energy = cfg_.eos == EosType::Adiabatic;
+  const auto x = p_.x;
+  const auto v = p_.v;
+  const auto a = p_.a;
+  const auto vpred = p_.vpred;
+  const auto u = p_.u;
+  const auto upred = p_.upred;
+  const auto dudt = p_.dudt;
+  const auto h = p_.h;
+  const auto divv = p_.divv;
+  const Real hdt = 0.5 * dt;
+  // Kick (half step), drift, predict v and u to the end of the step, and h
+  // from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
+  // starting guess of the h-rho iteration.
+  par_for(
+      "sph::kick_drift", 0, p_.n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < dim; ++d) {
+          const Real vh = v(i, d) + hdt * a(i, d);
+          v(i, d) = vh;
+          x(i, d) += dt * vh;  // wrapped into the box at the next list rebuild
+          vpred(i, d) = vh + hdt * a(i, d);
+        }
+        h(i) *= math::exp(dt * divv(i) / dim);
+        if (energy) {
+          u(i) += hdt * dudt(i);
+          upred(i) = u(i) + hdt * dudt(i);
+        } else {
+          upred(i) = u(i);
+        }
+      });
+  time_ += dt;
+  compute_accelerations(vpred, upred);
+  // Second kick with the new accelerations.
+  par_for(
+      "sph::kick", 0, p_.n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < dim; ++d) v(i, d) += hdt * a(i, d);
+        if (energy) u(i) += hdt * dudt(i);
+      });
+  if (cfg_.cullen_dehnen) update_cullen_dehnen(p_, divv_old_, cfg_, dt);
+  ++steps_;
+  dt_next_ = timestep();
+  return dt;
+}
+
+int SphSystem::advance_to(Real t_end) {
+  int n = 0;
+  while (time_ < t_end * (1.0 - 1e-14)) {
+    if (time_ + dt_next_ > t_end) dt_next_ = t_end - time_;
+    step();
+    ++n;
+  }
+  return n;
+}
+
+Diagnostics SphSystem::diagnostics() const {
+  const auto m = p_.m;
+  const auto v = p_.v;
+  const auto u = p_.u;
+  const int dim = p_.dim;
+  const bool energy = cfg_.eos == EosType::Adiabatic;
+  Diagnostics dg;
+  par_reduce(
+      "sph::diag_mass", 0, p_.n, KOKKOS_LAMBDA(int i, Real& s) { s += m(i); }, dg.mass);
+  for (int d = 0; d < dim; ++d) {
+    Real s = 0.0;
+    par_reduce(
+        "sph::diag_momentum", 0, p_.n, KOKKOS_LAMBDA(int i, Real& acc) { acc += m(i) * v(i, d); }, s);
+    dg.momentum[d] = s;
+  }
+  Real v2sum = 0.0;
+  par_reduce(
+      "sph::diag_kinetic", 0, p_.n,
+      KOKKOS_LAMBDA(int i, Real& s) {
+        Real v2 = 0.0;
+        for (int d = 0; d < dim; ++d) v2 += v(i, d) * v(i, d);
+        s += m(i) * v2;
+      },
+      v2sum);
+  par_reduce(
+      "sph::diag_momentum_abs", 0, p_.n,
+      KOKKOS_LAMBDA(int i, Real& s) {
+        Real v2 = 0.0;
+        for (int d = 0; d < dim; ++d) v2 += v(i, d) * v(i, d);
+        s += m(i) * math::sqrt(v2);
+      },
+      dg.momentum_abs);
+  if (energy) {
+    par_reduce(
+        "sph::diag_thermal", 0, p_.n, KOKKOS_LAMBDA(int i, Real& s) { s += m(i) * u(i); }, dg.thermal);
+  }
+  dg.kinetic = 0.5 * v2sum;
+  dg.energy = dg.kinetic + dg.thermal;
+  dg.v_rms = dg.mass > 0.0 ? std::sqrt(v2sum / dg.mass) : 0.0;
+  return dg;
+}
+
+Snapshot SphSystem::snapshot() const {
+  Snapshot s;
+  s.time = time_;
+  s.x = to_host(p_.x);
+  for (int i = 0; i < p_.n; ++i)
+    for (int d = 0; d < p_.dim; ++d) s.x(i, d) = box_.wrap(s.x(i, d), d);
+  s.v = to_host(p_.v);
+  s.h = to_host(p_.h);
+  s.rho = to_host(p_.rho);
+  s.u = to_host(p_.u);
+  s.P = to_host(p_.P);
+  s.m = to_host(p_.m);
+  s.type = to_host(p_.type);
+  s.id = to_host(p_.id);
+  return s;
+}
+
+double SphSystem::bytes_per_particle() const {
+  if (p_.n == 0) return 0.0;
+  const double particle = static_cast<double>(p_.bytes_per_particle()) + sizeof(Real);  // + divv_old
+  return particle + static_cast<double>(nl_.bytes()) / p_.n;
+}
+
+}  // namespace mote::sph
