@@ -49,6 +49,49 @@ void SnapshotWriter::cell_field(const std::string& name, const double* data, con
   cell_fields_.push_back(name);
 }
 
+void SnapshotWriter::particles(long long n_total, long long offset, long long count, const double* xyz) {
+  mesh_ = Mesh::Particles;
+  n_particles_ = n_total;
+  particle_offset_ = offset;
+  particle_count_ = count;
+  Block b;
+  b.global_dims = {hsize_t(n_total), 3};
+  b.offset = {hsize_t(offset), 0};
+  b.count = {hsize_t(count), 3};
+  file_.write("/particles/position", b, xyz);
+}
+
+void SnapshotWriter::particle_field(const std::string& name, const double* data, int components, const FieldUnit& unit) {
+  if (mesh_ != Mesh::Particles) throw std::logic_error("particle_field before particles()");
+  Block b;
+  b.global_dims = {hsize_t(n_particles_)};
+  b.offset = {hsize_t(particle_offset_)};
+  b.count = {hsize_t(particle_count_)};
+  if (components > 1) {
+    b.global_dims.push_back(hsize_t(components));
+    b.offset.push_back(0);
+    b.count.push_back(hsize_t(components));
+  }
+  const std::string path = "/particles/" + name;
+  file_.write(path, b, data);
+  file_.write_attribute(path, "unit", unit.label);
+  file_.write_attribute(path, "to_cgs", unit.to_cgs);
+  particle_fields_.push_back({name, components, false});
+}
+
+void SnapshotWriter::particle_field(const std::string& name, const std::int32_t* data, const FieldUnit& unit) {
+  if (mesh_ != Mesh::Particles) throw std::logic_error("particle_field before particles()");
+  Block b;
+  b.global_dims = {hsize_t(n_particles_)};
+  b.offset = {hsize_t(particle_offset_)};
+  b.count = {hsize_t(particle_count_)};
+  const std::string path = "/particles/" + name;
+  file_.write(path, b, data);
+  file_.write_attribute(path, "unit", unit.label);
+  file_.write_attribute(path, "to_cgs", unit.to_cgs);
+  particle_fields_.push_back({name, 1, true});
+}
+
 void SnapshotWriter::array(const std::string& name, const Block& block, const double* data, const FieldUnit& unit) {
   const std::string path = "/data/" + name;
   file_.write(path, block, data);
@@ -62,12 +105,18 @@ std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const 
   os << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
   os << "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n";
   os << "   <Time Value=\"" << log::format("%.17g", time) << "\"/>\n";
-  const std::string item = "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5_name;
+  const std::string float_item = "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">";
+  const std::string int_item = "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
+  const std::string item = float_item + h5_name;
   if (mesh_ == Mesh::Rectilinear) {
     os << "   <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" << ny_ + 1 << " " << nx_ + 1 << "\"/>\n";
     os << "   <Geometry GeometryType=\"VXVY\">\n";
     os << "    <DataItem Dimensions=\"" << nx_ + 1 << item << ":/mesh/x_nodes</DataItem>\n";
     os << "    <DataItem Dimensions=\"" << ny_ + 1 << item << ":/mesh/y_nodes</DataItem>\n";
+  } else if (mesh_ == Mesh::Particles) {
+    os << "   <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n_particles_ << "\"/>\n";
+    os << "   <Geometry GeometryType=\"XYZ\">\n";
+    os << "    <DataItem Dimensions=\"" << n_particles_ << " 3" << item << ":/particles/position</DataItem>\n";
   } else {
     const std::string dims = std::to_string(ny_ + 1) + " " + std::to_string(nx_ + 1);
     os << "   <Topology TopologyType=\"2DSMesh\" Dimensions=\"" << dims << "\"/>\n";
@@ -79,6 +128,14 @@ std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const 
   for (const auto& f : cell_fields_) {
     os << "   <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
     os << "    <DataItem Dimensions=\"" << ny_ << " " << nx_ << item << ":/fields/" << f << "</DataItem>\n";
+    os << "   </Attribute>\n";
+  }
+  for (const auto& f : particle_fields_) {
+    const std::string dims = std::to_string(n_particles_) + (f.components > 1 ? " " + std::to_string(f.components) : "");
+    os << "   <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.components > 1 ? "Vector" : "Scalar")
+       << "\" Center=\"Node\">\n";
+    os << "    <DataItem Dimensions=\"" << dims << (f.integer ? int_item : float_item)
+       << h5_name << ":/particles/" << f.name << "</DataItem>\n";
     os << "   </Attribute>\n";
   }
   os << "  </Grid>\n </Domain>\n</Xdmf>\n";

@@ -5,6 +5,7 @@
 //   /mesh/x_nodes, /mesh/y_nodes        node coordinates: 1D for a rectilinear mesh,
 //                                       2D (rows + 1, cols + 1) for a structured one
 //   /fields/<name>    cell data, shape (ny, nx); attributes unit (text), to_cgs (factor)
+//   /particles/position (n, 3) and /particles/<name> (n) or (n, 3): particle data
 //   /data/<name>      other arrays (grain-size grids, distributions), same attributes
 // A Simulation describes its mesh and fields through SnapshotWriter; the run
 // loop adds the root attributes and commits the file and its .xmf.
@@ -39,6 +40,14 @@ class SnapshotWriter {
   /// Cell-centred field of this rank's rows, row-major (rows, cols), host memory.
   void cell_field(const std::string& name, const double* data, const FieldUnit& unit);
 
+  /// Particles: n_total particles over all ranks, this rank holding [offset,
+  /// offset + count); positions as (count, 3) row-major (unused dimensions 0),
+  /// written to /particles/position and described as an XDMF point cloud.
+  void particles(long long n_total, long long offset, long long count, const double* xyz);
+  /// Per-particle data of this rank: `components` values per particle (1 or 3).
+  void particle_field(const std::string& name, const double* data, int components, const FieldUnit& unit);
+  void particle_field(const std::string& name, const std::int32_t* data, const FieldUnit& unit);
+
   /// Any other array (not part of the XDMF mesh description), e.g. a grain-size
   /// grid or a per-cell size distribution, under "/data/<name>"; `block` is
   /// this rank's part (Block::whole for arrays identical on every rank).
@@ -51,11 +60,18 @@ class SnapshotWriter {
   H5File& file() { return file_; }
 
  private:
-  enum class Mesh { None, Rectilinear, Structured };
+  enum class Mesh { None, Rectilinear, Structured, Particles };
   H5File& file_;
   Mesh mesh_ = Mesh::None;
   int nx_ = 0, ny_ = 0, row_begin_ = 0, rows_ = 0;  // cells: ny_ rows of nx_ columns
   std::vector<std::string> cell_fields_;
+  long long n_particles_ = 0, particle_offset_ = 0, particle_count_ = 0;
+  struct ParticleField {
+    std::string name;
+    int components;
+    bool integer;
+  };
+  std::vector<ParticleField> particle_fields_;
 };
 
 }  // namespace mote::io

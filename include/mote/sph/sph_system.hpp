@@ -85,6 +85,19 @@ class SphSystem {
   /// Passes over the neighbour lists per particle in the last density solve.
   double density_passes() const { return density_passes_; }
 
+  /// The time-step the next step() takes (a driver may shorten it, e.g. to
+  /// land on an output time).
+  void set_next_dt(Real dt) { dt_next_ = dt; }
+  /// Restart: the clock of a checkpointed run (the particle Views, including
+  /// a, dudt, divv and divv_old(), are restored by the caller).
+  void restore_clock(Real time, Real dt_next, long long steps) {
+    time_ = time;
+    dt_next_ = dt_next;
+    steps_ = steps;
+  }
+  /// div v of the previous step (Cullen & Dehnen switch), part of the state.
+  const RealView1& divv_old() const { return divv_old_; }
+
   /// Bytes of device memory per particle (particle data + neighbour list).
   double bytes_per_particle() const;
 

@@ -1,0 +1,159 @@
+// io::Simulation adapter of the SPH engine (see include/mote/sph/sph_simulation.hpp).
+#include "mote/sph/sph_simulation.hpp"
+
+#include <limits>
+
+#include "mote/core/comm.hpp"
+#include "mote/core/log.hpp"
+#include "mote/core/loops.hpp"
+
+namespace mote::sph {
+
+namespace {
+
+using io::Block;
+
+std::vector<double> to_host(const RealView1& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  return std::vector<double>(h.data(), h.data() + h.extent(0));
+}
+
+/// (n, dim) device array as row-major (n, width) host data, zero-padded.
+std::vector<double> to_host(const RealView2& v, int width) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  const int n = static_cast<int>(h.extent(0)), dim = static_cast<int>(h.extent(1));
+  std::vector<double> out(static_cast<size_t>(n) * width, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < dim; ++d) out[static_cast<size_t>(i) * width + d] = h(i, d);
+  return out;
+}
+
+void from_host(const std::vector<double>& data, const RealView1& v) {
+  auto h = Kokkos::create_mirror_view(v);
+  for (size_t i = 0; i < data.size(); ++i) h(i) = data[i];
+  Kokkos::deep_copy(v, h);
+}
+
+void from_host(const std::vector<double>& data, const RealView2& v) {
+  auto h = Kokkos::create_mirror_view(v);
+  const int n = static_cast<int>(h.extent(0)), dim = static_cast<int>(h.extent(1));
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < dim; ++d) h(i, d) = data[static_cast<size_t>(i) * dim + d];
+  Kokkos::deep_copy(v, h);
+}
+
+std::vector<std::int32_t> ints_to_host(const IntView1& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  return std::vector<std::int32_t>(h.data(), h.data() + h.extent(0));
+}
+
+}  // namespace
+
+SphSimulation::SphSimulation(std::unique_ptr<SphSystem> system, const units::UnitSystem& units)
+    : system_(std::move(system)), units_(units) {
+  system_->initialise();
+}
+
+double SphSimulation::max_dt() { return system_->next_dt(); }
+
+void SphSimulation::advance(double, double dt) {
+  system_->set_next_dt(dt);
+  system_->step();
+}
+
+void SphSimulation::write_snapshot(io::SnapshotWriter& out) const {
+  const auto snap = system_->snapshot();
+  const int n = static_cast<int>(snap.m.extent(0)), dim = static_cast<int>(snap.x.extent(1));
+  std::vector<double> xyz(3 * static_cast<size_t>(n), 0.0), vel(xyz.size(), 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < dim; ++d) {
+      xyz[3 * i + d] = snap.x(i, d);
+      vel[3 * i + d] = snap.v(i, d);
+    }
+  auto vec = [](const HostView<Real*>& h) { return std::vector<double>(h.data(), h.data() + h.extent(0)); };
+  out.particles(n, 0, n, xyz.data());
+  out.particle_field("velocity", vel.data(), 3, {"code velocity", units_.velocity()});
+  out.particle_field("h", vec(snap.h).data(), 1, {"code length", units_.length});
+  out.particle_field("density", vec(snap.rho).data(), 1, {"code density", units_.density()});
+  out.particle_field("u", vec(snap.u).data(), 1, {"code specific energy", units_.specific_energy()});
+  out.particle_field("pressure", vec(snap.P).data(), 1, {"code pressure", units_.pressure()});
+  out.particle_field("mass", vec(snap.m).data(), 1, {"code mass", units_.mass});
+  std::vector<std::int32_t> type(snap.type.data(), snap.type.data() + n), id(snap.id.data(), snap.id.data() + n);
+  out.particle_field("type", type.data(), {"1", 1.0});
+  out.particle_field("id", id.data(), {"1", 1.0});
+}
+
+void SphSimulation::save_state(io::H5File& f) const {
+  const auto& p = system_->particles();
+  const hsize_t n = p.n, dim = p.dim;
+  const Block vec = Block::whole({n, dim}), scalar = Block::whole({n});
+  f.write("/state/x", vec, to_host(p.x, p.dim).data());
+  f.write("/state/v", vec, to_host(p.v, p.dim).data());
+  f.write("/state/a", vec, to_host(p.a, p.dim).data());
+  f.write("/state/m", scalar, to_host(p.m).data());
+  f.write("/state/h", scalar, to_host(p.h).data());
+  f.write("/state/u", scalar, to_host(p.u).data());
+  f.write("/state/dudt", scalar, to_host(p.dudt).data());
+  f.write("/state/divv", scalar, to_host(p.divv).data());
+  f.write("/state/divv_old", scalar, to_host(system_->divv_old()).data());
+  f.write("/state/alpha", scalar, to_host(p.alpha).data());
+  f.write("/state/type", scalar, ints_to_host(p.type).data());
+  f.write("/state/id", scalar, ints_to_host(p.id).data());
+  f.write_attribute("/state", "time", system_->time());
+  f.write_attribute("/state", "dt_next", system_->next_dt());
+  f.write_attribute("/state", "steps", static_cast<std::int64_t>(system_->steps()));
+}
+
+void SphSimulation::load_state(const io::H5File& f) {
+  auto& p = system_->particles();
+  const hsize_t n = p.n, dim = p.dim;
+  if (f.dims("/state/x") != std::vector<hsize_t>{n, dim})
+    throw std::runtime_error("checkpoint holds a different number of particles or dimensions than the deck sets up");
+  const Block vec = Block::whole({n, dim}), scalar = Block::whole({n});
+  std::vector<double> buf2(n * dim), buf(n);
+  auto read2 = [&](const char* name, const RealView2& v) { f.read(name, vec, buf2.data()); from_host(buf2, v); };
+  auto read1 = [&](const char* name, const RealView1& v) { f.read(name, scalar, buf.data()); from_host(buf, v); };
+  read2("/state/x", p.x);
+  read2("/state/v", p.v);
+  read2("/state/a", p.a);
+  read1("/state/m", p.m);
+  read1("/state/h", p.h);
+  read1("/state/u", p.u);
+  read1("/state/dudt", p.dudt);
+  read1("/state/divv", p.divv);
+  read1("/state/divv_old", system_->divv_old());
+  read1("/state/alpha", p.alpha);
+  std::vector<std::int32_t> ibuf(n);
+  for (const auto& [name, view] : {std::pair<const char*, IntView1>{"/state/type", p.type}, {"/state/id", p.id}}) {
+    f.read(name, scalar, ibuf.data());
+    auto h = Kokkos::create_mirror_view(view);
+    for (hsize_t i = 0; i < n; ++i) h(i) = ibuf[i];
+    Kokkos::deep_copy(view, h);
+  }
+  system_->restore_clock(f.read_attribute_real("/state", "time"), f.read_attribute_real("/state", "dt_next"),
+                         f.read_attribute_int("/state", "steps"));
+}
+
+std::vector<io::Diagnostic> SphSimulation::diagnostics() const {
+  const auto d = system_->diagnostics();
+  return {{"mass", d.mass},       {"momentum_x", d.momentum[0]}, {"momentum_y", d.momentum[1]},
+          {"momentum_z", d.momentum[2]}, {"kinetic", d.kinetic}, {"thermal", d.thermal},
+          {"energy", d.energy},   {"v_rms", d.v_rms}};
+}
+
+std::optional<io::NonFinite> SphSimulation::find_non_finite() const {
+  const auto& p = system_->particles();
+  auto x = p.x, v = p.v;
+  auto u = p.u, h = p.h;
+  const int dim = p.dim;
+  int first = std::numeric_limits<int>::max();
+  par_reduce("sph::find_non_finite", 0, p.n, KOKKOS_LAMBDA(int i, int& f) {
+    bool ok = math::isfinite(u(i)) && math::isfinite(h(i));
+    for (int d = 0; d < dim; ++d) ok = ok && math::isfinite(x(i, d)) && math::isfinite(v(i, d));
+    if (!ok) f = math::min(f, i);
+  }, Kokkos::Min<int>(first));
+  if (first == std::numeric_limits<int>::max()) return std::nullopt;
+  return io::NonFinite{"particle state (x, v, u, h)", log::cat("particle index ", first)};
+}
+
+}  // namespace mote::sph
