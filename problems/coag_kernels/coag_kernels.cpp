@@ -10,6 +10,7 @@
 
 #include "mote/coagulation/analytic.hpp"
 #include "mote/coagulation/coagulation.hpp"
+#include "mote/coagulation/standalone_cells.hpp"
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
@@ -28,125 +29,46 @@ struct Params {
   Real call_interval = 0;
 };
 
-class CoagKernels final : public mote::io::Simulation {
+/// Analytic mass density of bin k at time t (exponential initial distribution).
+double reference(const Params& p, const coag::MassGrid& grid, int k, double t) {
+  return p.N0 * p.m0 * coag::analytic::bin_mass(p.kernel, grid.edge(k) / p.m0, grid.edge(k + 1) / p.m0, t, p.K0, p.N0, p.m0);
+}
+
+std::vector<double> initial(const Params& p, const coag::MassGrid& grid) {
+  std::vector<double> rho(grid.size());
+  for (int k = 0; k < grid.size(); ++k) rho[k] = reference(p, grid, k, 0.0);
+  return rho;
+}
+
+class CoagKernels final : public coag::StandaloneCells {
  public:
   CoagKernels(const Params& p, const coag::CoagulationSettings& s, const coag::MassGrid& grid)
-      : p_(p), grid_(grid), solver_(grid, s, p.cells), kernel_(coag::make_kernel(s, grid)) {
-    const int n = grid_.size();
-    density_ = mote::RealView2("density", p_.cells, n);
-    auto h = Kokkos::create_mirror_view(density_);
-    for (int c = 0; c < p_.cells; ++c)
-      for (int k = 0; k < n; ++k) h(c, k) = reference(k, 0.0);
-    Kokkos::deep_copy(density_, h);
-    mass0_ = total_mass();
-    if (const auto w = grid_.resolution_warning(); !w.empty()) mote::log::warn(w);
-  }
-
-  double max_dt() override { return p_.call_interval > 0 ? p_.call_interval : 1e300; }
-
-  void advance(double, double dt) override {
-    const auto st = solver_.integrate(density_, dt, kernel_);
-    substeps_ += st.substeps;
-    rejections_ += st.rejections;
-    if (st.failed_cells > 0)
-      throw std::runtime_error(mote::log::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
-    tau_ += dt;
-  }
+      : StandaloneCells(grid, s, p.cells, coag::make_kernel(s, grid), initial(p, grid), p.call_interval,
+                        {"code density", 1.0}),
+        p_(p) {}
 
   void write_snapshot(mote::io::SnapshotWriter& out) const override {
-    const int n = grid_.size();
-    out.array("mass", mote::io::Block::whole({hsize_t(n)}), grid_.masses().data(), {"code mass", 1.0});
-    out.array("mass_edges", mote::io::Block::whole({hsize_t(n + 1)}), grid_.edges().data(), {"code mass", 1.0});
-    const auto rho = host_density();
-    out.array("density", mote::io::Block::whole({hsize_t(p_.cells), hsize_t(n)}), rho.data(), {"code density", 1.0});
-    std::vector<double> ref(n);
-    for (int k = 0; k < n; ++k) ref[k] = reference(k, tau_);
-    out.array("analytic_density", mote::io::Block::whole({hsize_t(n)}), ref.data(), {"code density", 1.0});
-  }
-
-  void save_state(mote::io::H5File& file) const override {
-    const int n = grid_.size();
-    const auto rho = host_density();
-    file.write("/state/density", mote::io::Block::whole({hsize_t(p_.cells), hsize_t(n)}), rho.data());
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_.next_substep());
-    file.write("/state/next_substep", mote::io::Block::whole({hsize_t(p_.cells)}), h.data());
-    file.write_attribute("/state", "tau", tau_);
-  }
-
-  void load_state(const mote::io::H5File& file) override {
-    const int n = grid_.size();
-    std::vector<double> rho(size_t(p_.cells) * n), next(p_.cells);
-    file.read("/state/density", mote::io::Block::whole({hsize_t(p_.cells), hsize_t(n)}), rho.data());
-    file.read("/state/next_substep", mote::io::Block::whole({hsize_t(p_.cells)}), next.data());
-    tau_ = file.read_attribute_real("/state", "tau");
-    auto h = Kokkos::create_mirror_view(density_);
-    for (int c = 0; c < p_.cells; ++c)
-      for (int k = 0; k < n; ++k) h(c, k) = rho[size_t(c) * n + k];
-    Kokkos::deep_copy(density_, h);
-    auto hn = Kokkos::create_mirror_view(solver_.next_substep());
-    for (int c = 0; c < p_.cells; ++c) hn(c) = next[c];
-    Kokkos::deep_copy(solver_.next_substep(), hn);
-  }
-
-  std::vector<mote::io::Diagnostic> diagnostics() const override {
-    const double m = total_mass();
-    return {{"mass", m}, {"mass_error", (m - mass0_) / mass0_}, {"substeps", double(substeps_)}, {"rejections", double(rejections_)}};
-  }
-
-  std::optional<mote::io::NonFinite> find_non_finite() const override {
-    const auto rho = host_density();
-    for (size_t i = 0; i < rho.size(); ++i)
-      if (!std::isfinite(rho[i]))
-        return mote::io::NonFinite{"density", mote::log::cat("cell ", i / grid_.size(), ", species ", i % grid_.size())};
-    return std::nullopt;
+    write_distribution(out, {"code mass", 1.0}, {"code length", 1.0});
+    std::vector<double> ref(grid_.size());
+    for (int k = 0; k < grid_.size(); ++k) ref[k] = reference(p_, grid_, k, elapsed_);
+    out.array("analytic_density", mote::io::Block::whole({hsize_t(ref.size())}), ref.data(), {"code density", 1.0});
   }
 
   void finish(double) override {
-    const int n = grid_.size();
     const auto rho = host_density();
     double num = 0, den = 0;
-    for (int k = 0; k < n; ++k) {
-      const double ref = reference(k, tau_);
+    for (int k = 0; k < grid_.size(); ++k) {
+      const double ref = reference(p_, grid_, k, elapsed_);
       num += std::fabs(rho[k] - ref);
       den += ref;
     }
-    mote::log::info(mote::log::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, "
-                                      "mass error = %.3e, substeps = %lld, rejections = %lld",
-                                      p_.kernel.c_str(), tau_, grid_.bins_per_mass_decade(), num / den,
-                                      (total_mass() - mass0_) / mass0_, substeps_, rejections_));
+    mote::log::info(mote::log::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, ",
+                                      p_.kernel.c_str(), elapsed_, grid_.bins_per_mass_decade(), num / den),
+                    summary());
   }
 
  private:
-  /// Analytic mass density of bin k at time t.
-  double reference(int k, double t) const {
-    return p_.N0 * p_.m0 *
-           coag::analytic::bin_mass(p_.kernel, grid_.edge(k) / p_.m0, grid_.edge(k + 1) / p_.m0, t, p_.K0, p_.N0, p_.m0);
-  }
-
-  std::vector<double> host_density() const {
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), density_);
-    std::vector<double> out(h.size());
-    for (int c = 0; c < p_.cells; ++c)
-      for (int k = 0; k < grid_.size(); ++k) out[size_t(c) * grid_.size() + k] = h(c, k);
-    return out;
-  }
-
-  double total_mass() const {
-    auto rho = density_;
-    double m = 0;
-    mote::par_reduce("coag_kernels::mass", 0, p_.cells, 0, grid_.size(), KOKKOS_LAMBDA(int c, int k, double& s) {
-      s += rho(c, k);
-    }, m);
-    return m / p_.cells;
-  }
-
   Params p_;
-  coag::MassGrid grid_;
-  coag::Coagulation solver_;
-  coag::AnyKernel kernel_;
-  mote::RealView2 density_;
-  double tau_ = 0, mass0_ = 0;
-  long long substeps_ = 0, rejections_ = 0;
 };
 
 void declare(mote::core::DeckSchema& s) {

@@ -46,7 +46,7 @@ def main():
     deck = tomllib.loads(snaps[-1].deck)
     a = snaps[-1].data["grain_size"]
     sig = [s.data["sigma_d"][0] for s in snaps]
-    tot = np.array([s.data["surface_density"][0].sum() for s in snaps])
+    tot = np.array([s.data["density"][0].sum() for s in snaps])
     a_frag = fragmentation_limit(deck)
     ok = []
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mote/coagulation/coagulation.hpp"
+#include "mote/coagulation/standalone_cells.hpp"
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
@@ -29,136 +30,66 @@ struct Params {
   int cells = 1;
 };
 
-class CoagSteadyState final : public mote::io::Simulation {
+Real sound_speed(const Params& p, const coag::CoagulationSettings& s) {
+  return std::sqrt(cgs::k_B * p.temperature / (s.mu * cgs::m_H));
+}
+
+coag::GasCells gas_cells(const Params& p, const coag::CoagulationSettings& s) {
+  const int nc = p.cells;
+  const Real omega = std::sqrt(cgs::G * p.m_star / (p.radius * p.radius * p.radius));
+  coag::GasCells gas;
+  gas.sound_speed = mote::RealView1("sound_speed", nc);
+  gas.density = mote::RealView1("sigma_gas", nc);
+  gas.omega = mote::RealView1("omega", nc);
+  gas.alpha = mote::RealView1("alpha", nc);
+  gas.headwind = mote::RealView1("headwind", nc);
+  Kokkos::deep_copy(gas.sound_speed, sound_speed(p, s));
+  Kokkos::deep_copy(gas.density, p.sigma_gas);
+  Kokkos::deep_copy(gas.omega, omega);
+  Kokkos::deep_copy(gas.alpha, p.alpha);
+  Kokkos::deep_copy(gas.headwind, p.headwind);
+  return gas;
+}
+
+/// MRN: dN/da ~ a^-3.5, i.e. mass per logarithmic bin ~ a^0.5, truncated at a_init_max.
+std::vector<double> mrn(const Params& p, const coag::MassGrid& grid) {
+  std::vector<double> init(grid.size(), 0.0);
+  double sum = 0;
+  for (int k = 0; k < grid.size(); ++k)
+    if (grid.grain_size(k) <= p.a_init_max * (1 + 1e-12)) sum += init[k] = std::sqrt(grid.grain_size(k));
+  for (auto& v : init) v *= p.dust_to_gas * p.sigma_gas / sum;
+  return init;
+}
+
+class CoagSteadyState final : public coag::StandaloneCells {
  public:
-  CoagSteadyState(const Params& p, const coag::CoagulationSettings& s)
-      : p_(p), settings_(s), grid_(coag::MassGrid::from_sizes(s.a_min, s.a_max, s.species, s.rho_m)),
-        solver_(grid_, s, p.cells) {
-    if (const auto w = grid_.resolution_warning(); !w.empty()) mote::log::warn(w);
-    const int n = grid_.size(), nc = p_.cells;
-    const Real cs = std::sqrt(cgs::k_B * p_.temperature / (s.mu * cgs::m_H));
-    const Real omega = std::sqrt(cgs::G * p_.m_star / (p_.radius * p_.radius * p_.radius));
-    coag::GasCells gas;
-    gas.sound_speed = mote::RealView1("sound_speed", nc);
-    gas.density = mote::RealView1("sigma_gas", nc);
-    gas.omega = mote::RealView1("omega", nc);
-    gas.alpha = mote::RealView1("alpha", nc);
-    gas.headwind = mote::RealView1("headwind", nc);
-    Kokkos::deep_copy(gas.sound_speed, cs);
-    Kokkos::deep_copy(gas.density, p_.sigma_gas);
-    Kokkos::deep_copy(gas.omega, omega);
-    Kokkos::deep_copy(gas.alpha, p_.alpha);
-    Kokkos::deep_copy(gas.headwind, p_.headwind);
-    kernel_ = coag::make_kernel(s, grid_, gas);
-    // MRN: dN/da ~ a^-3.5 -> mass per log bin ~ a^0.5, truncated at a_init_max.
-    std::vector<double> init(n, 0.0);
-    double sum = 0;
-    for (int k = 0; k < n; ++k)
-      if (grid_.grain_size(k) <= p_.a_init_max * (1 + 1e-12)) sum += init[k] = std::sqrt(grid_.grain_size(k));
-    density_ = mote::RealView2("sigma_dust", nc, n);
-    auto h = Kokkos::create_mirror_view(density_);
-    for (int c = 0; c < nc; ++c)
-      for (int k = 0; k < n; ++k) h(c, k) = p_.dust_to_gas * p_.sigma_gas * init[k] / sum;
-    Kokkos::deep_copy(density_, h);
-    mass0_ = total_mass();
-    const Real st_frag = s.v_frag * s.v_frag / (3 * p_.alpha * cs * cs);
-    mote::log::info(mote::log::format("coag_steady_state: c_s = %.4e cm/s, Omega = %.4e 1/s, St_frag = %.3e, "
+  CoagSteadyState(const Params& p, const coag::CoagulationSettings& s, const coag::MassGrid& grid)
+      : StandaloneCells(grid, s, p.cells, coag::make_kernel(s, grid, gas_cells(p, s)), mrn(p, grid), p.call_interval,
+                        {"g/cm^2", 1.0}) {
+    const Real cs = sound_speed(p, s);
+    const Real st_frag = s.v_frag * s.v_frag / (3 * p.alpha * cs * cs);
+    mote::log::info(mote::log::format("coag_steady_state: c_s = %.4e cm/s, St_frag = %.3e, "
                                       "a_frag = 2 Sigma_g St_frag / (pi rho_m) = %.3e cm",
-                                      cs, omega, st_frag, 2 * p_.sigma_gas * st_frag / (M_PI * s.rho_m)));
-  }
-
-  double max_dt() override { return p_.call_interval > 0 ? p_.call_interval : 1e300; }
-
-  void advance(double, double dt) override {
-    const auto st = solver_.integrate(density_, dt, kernel_);
-    substeps_ += st.substeps;
-    rejections_ += st.rejections;
-    if (st.failed_cells > 0)
-      throw std::runtime_error(mote::log::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
+                                      cs, st_frag, 2 * p.sigma_gas * st_frag / (M_PI * s.rho_m)));
   }
 
   void write_snapshot(mote::io::SnapshotWriter& out) const override {
-    const int n = grid_.size(), nc = p_.cells;
-    out.array("mass", mote::io::Block::whole({hsize_t(n)}), grid_.masses().data(), {"g", 1.0});
-    out.array("mass_edges", mote::io::Block::whole({hsize_t(n + 1)}), grid_.edges().data(), {"g", 1.0});
-    out.array("grain_size", mote::io::Block::whole({hsize_t(n)}), grid_.sizes().data(), {"cm", 1.0});
+    write_distribution(out, {"g", 1.0}, {"cm", 1.0});
+    const int n = grid_.size();
     const auto sig = host_density();
     std::vector<double> sigma_d(sig.size());
-    for (int c = 0; c < nc; ++c)
-      for (int k = 0; k < n; ++k)
-        sigma_d[size_t(c) * n + k] = sig[size_t(c) * n + k] / std::log(grid_.edge(k + 1) / grid_.edge(k));
-    out.array("surface_density", mote::io::Block::whole({hsize_t(nc), hsize_t(n)}), sig.data(), {"g/cm^2", 1.0});
-    out.array("sigma_d", mote::io::Block::whole({hsize_t(nc), hsize_t(n)}), sigma_d.data(), {"g/cm^2", 1.0});
+    for (size_t i = 0; i < sig.size(); ++i) {
+      const int k = static_cast<int>(i % n);
+      sigma_d[i] = sig[i] / std::log(grid_.edge(k + 1) / grid_.edge(k));  // eq. 69
+    }
+    out.array("sigma_d", mote::io::Block::whole({hsize_t(cells_), hsize_t(n)}), sigma_d.data(), {"g/cm^2", 1.0});
     auto next = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_.next_substep());
-    out.array("next_substep", mote::io::Block::whole({hsize_t(nc)}), next.data(), {"s", 1.0});
-  }
-
-  void save_state(mote::io::H5File& file) const override {
-    const auto sig = host_density();
-    file.write("/state/surface_density", mote::io::Block::whole({hsize_t(p_.cells), hsize_t(grid_.size())}), sig.data());
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_.next_substep());
-    file.write("/state/next_substep", mote::io::Block::whole({hsize_t(p_.cells)}), h.data());
-  }
-
-  void load_state(const mote::io::H5File& file) override {
-    const int n = grid_.size();
-    std::vector<double> sig(size_t(p_.cells) * n), next(p_.cells);
-    file.read("/state/surface_density", mote::io::Block::whole({hsize_t(p_.cells), hsize_t(n)}), sig.data());
-    file.read("/state/next_substep", mote::io::Block::whole({hsize_t(p_.cells)}), next.data());
-    auto h = Kokkos::create_mirror_view(density_);
-    for (int c = 0; c < p_.cells; ++c)
-      for (int k = 0; k < n; ++k) h(c, k) = sig[size_t(c) * n + k];
-    Kokkos::deep_copy(density_, h);
-    auto hn = Kokkos::create_mirror_view(solver_.next_substep());
-    for (int c = 0; c < p_.cells; ++c) hn(c) = next[c];
-    Kokkos::deep_copy(solver_.next_substep(), hn);
-  }
-
-  std::vector<mote::io::Diagnostic> diagnostics() const override {
-    const double m = total_mass();
-    return {{"dust_surface_density", m}, {"mass_error", (m - mass0_) / mass0_}, {"substeps", double(substeps_)},
-            {"rejections", double(rejections_)}};
-  }
-
-  std::optional<mote::io::NonFinite> find_non_finite() const override {
-    const auto sig = host_density();
-    for (size_t i = 0; i < sig.size(); ++i)
-      if (!std::isfinite(sig[i]))
-        return mote::io::NonFinite{"surface_density", mote::log::cat("cell ", i / grid_.size(), ", species ", i % grid_.size())};
-    return std::nullopt;
+    out.array("next_substep", mote::io::Block::whole({hsize_t(cells_)}), next.data(), {"s", 1.0});
   }
 
   void finish(double time) override {
-    mote::log::info(mote::log::format("coag_steady_state: t = %.4e yr, mass error = %.3e, substeps = %lld, rejections = %lld",
-                                      time / cgs::year, (total_mass() - mass0_) / mass0_, substeps_, rejections_));
+    mote::log::info(mote::log::format("coag_steady_state: t = %.4e yr, ", time / cgs::year), summary());
   }
-
- private:
-  std::vector<double> host_density() const {
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), density_);
-    std::vector<double> out(h.size());
-    for (int c = 0; c < p_.cells; ++c)
-      for (int k = 0; k < grid_.size(); ++k) out[size_t(c) * grid_.size() + k] = h(c, k);
-    return out;
-  }
-
-  double total_mass() const {
-    auto rho = density_;
-    double m = 0;
-    mote::par_reduce("coag_steady_state::mass", 0, p_.cells, 0, grid_.size(), KOKKOS_LAMBDA(int c, int k, double& s) {
-      s += rho(c, k);
-    }, m);
-    return m / p_.cells;
-  }
-
-  Params p_;
-  coag::CoagulationSettings settings_;
-  coag::MassGrid grid_;
-  coag::Coagulation solver_;
-  coag::AnyKernel kernel_;
-  mote::RealView2 density_;
-  double mass0_ = 0;
-  long long substeps_ = 0, rejections_ = 0;
 };
 
 void declare(mote::core::DeckSchema& s) {
@@ -195,7 +126,7 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
   p.call_interval = d.real("disc.call_interval");
   if (ctx.units.length != 1.0 || ctx.units.mass != 1.0 || ctx.units.time != 1.0)
     throw mote::core::DeckError("coag_steady_state works in cgs: set run.units = \"cgs\"");
-  return std::make_unique<CoagSteadyState>(p, s);
+  return std::make_unique<CoagSteadyState>(p, s, coag::MassGrid::from_sizes(s.a_min, s.a_max, s.species, s.rho_m));
 }
 
 }  // namespace
