@@ -9,6 +9,7 @@
 #include "mote/core/loops.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/forces.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/timestep.hpp"
 
 namespace mote::sph {
@@ -66,8 +67,21 @@ void SphSystem::set_particles(const ParticleSetup& s) {
   Kokkos::deep_copy(p_.omega, 1.0);
   divv_old_ = RealView1("sph::divv_old", n);
   nl_ = NeighbourList();
+  dust_.reset();
   time_ = 0.0;
+  dt_next_ = 0.0;
   steps_ = 0;
+}
+
+void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& eps) {
+  if (p_.n == 0) throw std::runtime_error("sph: set_dust() before set_particles()");
+  dust_ = std::make_shared<OneFluidDust>(settings, p_.n, p_.dim);
+  if (!eps.empty()) dust_->set_eps(eps);
+  if (dt_next_ > 0.0) {  // added to a running (e.g. relaxed) system
+    dust_->initialise(p_);
+    compute_accelerations(p_.v, p_.u);
+    dt_next_ = timestep();
+  }
 }
 
 void SphSystem::update_density() {
@@ -89,22 +103,31 @@ void SphSystem::update_density() {
 
 void SphSystem::compute_accelerations(const RealView2& vel, const RealView1& u) {
   update_density();
-  update_eos(p_, cfg_, u);
-  compute_forces(p_, nl_, box_, cfg_, vel, u);
+  if (dust_) {
+    dust_->compute_forces(p_, nl_, box_, cfg_, vel, u);
+  } else {
+    update_eos(p_, cfg_, u);
+    compute_forces(p_, nl_, box_, cfg_, vel, u);
+  }
   for (const auto& f : external_) f(p_, vel, time_);
   if (cfg_.damping > 0.0) apply_damping(p_, vel, cfg_.damping);
 }
 
 void SphSystem::initialise() {
   if (p_.n == 0) throw std::runtime_error("sph: initialise() before set_particles()");
+  if (dust_) {
+    update_density();
+    dust_->initialise(p_);
+  }
   compute_accelerations(p_.v, p_.u);
   Kokkos::deep_copy(divv_old_, p_.divv);
   dt_next_ = timestep();
 }
 
-Real SphSystem::timestep() const {
+Real SphSystem::timestep() {
   Real dt = compute_timestep(p_, cfg_);
   for (const auto& c : dt_hooks_) dt = std::min(dt, c(p_));
+  if (dust_) dt = std::min(dt, dust_->timestep(p_, cfg_));
   if (!(dt > 0.0) || !std::isfinite(dt)) throw std::runtime_error("sph: invalid time-step");
   return dt;
 }
@@ -142,6 +165,7 @@ Real SphSystem::step() {
           upred(i) = u(i);
         }
       });
+  if (dust_) dust_->kick_predict(hdt);
   time_ += dt;
   compute_accelerations(vpred, upred);
   // Second kick with the new accelerations.
@@ -150,6 +174,7 @@ Real SphSystem::step() {
         for (int d = 0; d < dim; ++d) v(i, d) += hdt * a(i, d);
         if (energy) u(i) += hdt * dudt(i);
       });
+  if (dust_) dust_->kick(p_, hdt);
   if (cfg_.cullen_dehnen) update_cullen_dehnen(p_, divv_old_, cfg_, dt);
   ++steps_;
   dt_next_ = timestep();
@@ -201,6 +226,11 @@ Diagnostics SphSystem::diagnostics() const {
   if (energy) {
     par_reduce(
         "sph::diag_thermal", 0, p_.n, KOKKOS_LAMBDA(int i, Real& s) { s += m(i) * u(i); }, dg.thermal);
+  }
+  if (dust_) {
+    dg.thermal = dust_->thermal_energy(p_, cfg_);
+    dg.dust_mass = dust_->dust_mass(p_);
+    dg.dust_floored = dust_->floored_mass();
   }
   dg.kinetic = 0.5 * v2sum;
   dg.energy = dg.kinetic + dg.thermal;

@@ -8,16 +8,20 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
 #include "mote/sph/config.hpp"
+#include "mote/sph/dust_settings.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/neighbours.hpp"
 #include "mote/sph/particles.hpp"
 
 namespace mote::sph {
+
+class OneFluidDust;
 
 /// Particle data on the host, for set-up (x and v are n x dim, row-major).
 struct ParticleSetup {
@@ -40,9 +44,11 @@ struct Diagnostics {
   Real momentum[3] = {0.0, 0.0, 0.0};
   Real momentum_abs = 0.0;  ///< sum m |v| (scale for relative momentum errors)
   Real kinetic = 0.0;
-  Real thermal = 0.0;  ///< sum m u (adiabatic runs)
-  Real energy = 0.0;   ///< kinetic + thermal (PL15 eq. 40 without dust)
-  Real v_rms = 0.0;    ///< mass-weighted rms velocity
+  Real thermal = 0.0;       ///< sum m u (adiabatic runs)
+  Real energy = 0.0;        ///< kinetic + thermal (PL15 eq. 40; thermal = sum m (1 - eps) u with dust)
+  Real v_rms = 0.0;         ///< mass-weighted rms velocity
+  Real dust_mass = 0.0;     ///< sum m eps (one-fluid dust)
+  Real dust_floored = 0.0;  ///< dust mass added by the negative-eps floor so far (= negative mass removed)
 };
 
 /// Extra time-step constraint (e.g. from a dust module): returns a dt bound.
@@ -60,6 +66,14 @@ class SphSystem {
 
   /// One kick-drift-kick step; returns the dt taken.
   Real step();
+
+  /// Switches on the one-fluid dust (PL15, HPL18) after set_particles(), either
+  /// before initialise() or on a running system (dust added after a gas-only
+  /// relaxation, PL15 sec. 4.4.1); eps (n x N, row-major) may be empty when
+  /// the settings give uniform fractions.
+  void set_dust(const DustSettings& settings, const std::vector<Real>& eps = {});
+  OneFluidDust* dust() { return dust_.get(); }
+  const OneFluidDust* dust() const { return dust_.get(); }
 
   /// Steps until time t_end (the last step is shortened to land on it).
   int advance_to(Real t_end);
@@ -103,7 +117,7 @@ class SphSystem {
 
  private:
   void update_density();
-  Real timestep() const;
+  Real timestep();
 
   SphConfig cfg_;
   Box box_;
@@ -112,6 +126,7 @@ class SphSystem {
   RealView1 divv_old_;
   std::vector<ExternalForce> external_;
   std::vector<TimestepConstraint> dt_hooks_;
+  std::shared_ptr<OneFluidDust> dust_;
   Real time_ = 0.0;
   Real dt_next_ = 0.0;
   long long steps_ = 0;

@@ -1,0 +1,56 @@
+// Settings of the one-fluid dust method in SPH (PL15; MULTIGRAIN, HPL18) and
+// their deck table [dust]: number of species, evolved variable (eps_j or
+// S_j = sqrt(rho eps_j), PL15 app. B / HPL18 eq. 51), discretisation of the
+// dust diffusion equation (two first derivatives, PL15 eq. 26, 29-30; direct
+// second derivatives, PL15 eq. 43 / HPL18 eq. 51), energy variable (u, PL15
+// eq. 27/45 and HPL18 eq. 56; u~ = (1 - eps) u, HPL18 eq. 55), drag law
+// (constant K_j, Epstein, constant t_s; PL15 eq. 19-20, HPL18 eq. 12-17),
+// grain sizes from a list or the power law of HPL18 eq. 63, and the
+// time-step criterion (HPL18 eq. 44 or PL15 eq. 16).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mote/core/kokkos_types.hpp"
+#include "mote/sph/dust_drag.hpp"
+
+namespace mote::core {
+class DeckSchema;
+class Deck;
+}  // namespace mote::core
+
+namespace mote::sph {
+
+enum class DustVariable : int { Epsilon = 0, SqrtRhoEps = 1 };
+enum class DustDiscretisation : int { SecondDerivatives = 0, FirstDerivatives = 1 };
+enum class DustEnergy : int { U = 0, UTilde = 1 };
+enum class DustTimestep : int { Combined = 0, Separate = 1 };
+
+struct DustSettings {
+  int nspecies = 1;
+  DustVariable variable = DustVariable::Epsilon;
+  DustDiscretisation discretisation = DustDiscretisation::SecondDerivatives;
+  DustEnergy energy = DustEnergy::U;
+  DragLaw drag = DragLaw::ConstantK;
+  std::vector<Real> k_drag{1000.0};      ///< K_j (ConstantK); one value = all species
+  std::vector<Real> sizes{1.0};          ///< s_j (Epstein), code length
+  Real rho_grain = 1.0;                  ///< intrinsic grain density (Epstein), code density
+  std::vector<Real> stopping_time{0.1};  ///< t_s per species (ConstantStoppingTime)
+  std::vector<Real> eps;                 ///< initial eps_j (uniform), when the problem does not set them
+  DustTimestep timestep = DustTimestep::Combined;
+  Real c_dust = 0.3;           ///< C0 of HPL18 eq. 44 / PL15 eq. 16
+  bool floor_negative = true;  ///< PL15 sec. 4.4.2: eps_j < 0 -> 0, removed mass reported
+
+  /// Declares the optional table [dust] (method, species, drag, sizes, ...).
+  static void declare(core::DeckSchema& schema);
+  /// Reads [dust] (sizes from a list or the HPL18 eq. 63 power law).
+  static DustSettings from_deck(const core::Deck& deck);
+
+  /// Per-species value of a list given with one or nspecies entries.
+  Real species_value(const std::vector<Real>& list, int j) const;
+  /// Throws std::invalid_argument on an inconsistent set.
+  void validate() const;
+};
+
+}  // namespace mote::sph

@@ -1,0 +1,110 @@
+// One-fluid dust in the terminal-velocity ("diffusion") approximation for N
+// species (PL15 sec. 2-3 and app. B; MULTIGRAIN, HPL18 sec. 2-3). The mixture
+// particles of SphSystem carry the dust fractions eps_j, or S_j = sqrt(rho eps_j),
+// as one (n x N) View; this class owns them and supplies the dusty parts of the
+// particle loop:
+//   gas pressure P = (gamma - 1)(1 - eps) rho u, or (gamma - 1) rho u~ (PL15 eq. 14, HPL18 eq. 31-32);
+//   artificial viscosity with the (1 - eps_a) factor (PL15 eq. 31, HPL18 eq. 57), conductivity
+//   divided by (1 - eps_a) (PL15 eq. 34, HPL18 eq. 59);
+//   dust equation with direct second derivatives (PL15 eq. 43 with D_j = eps_j tilde T_sj;
+//   HPL18 eq. 51 for S_j) in the force loop, or with two first derivatives (PL15 eq. 26,
+//   29-30; app. B eq. B7 for S_j) in a second loop over the neighbours;
+//   the matching energy equations (PL15 eq. 27, 45; HPL18 eq. 55-56) that conserve
+//   E = sum m (v^2/2 + (1 - eps) u) (PL15 eq. 40, HPL18 eq. 52) exactly in the
+//   semi-discrete sense;
+//   the time-step HPL18 eq. 44 (or PL15 eq. 16), with a warning when eps T_s exceeds the
+//   Courant time (PL15 eq. 18);
+//   the negative-eps floor of PL15 sec. 4.4.2 with the removed dust mass accounted.
+// Signs of the diffusion terms of the energy equation follow from exact energy
+// conservation (PL15 eq. 41-42; HPL18 eq. 53-56), which the tests check.
+#pragma once
+
+#include "mote/core/kokkos_types.hpp"
+#include "mote/sph/box.hpp"
+#include "mote/sph/config.hpp"
+#include "mote/sph/dust_settings.hpp"
+#include "mote/sph/neighbours.hpp"
+#include "mote/sph/particles.hpp"
+
+namespace mote::sph {
+
+class SphSystem;
+
+/// Host copies of the dust fields of a snapshot.
+struct DustSnapshot {
+  HostView<Real**> eps;    ///< eps_j (n x N)
+  HostView<Real**> v_gas;  ///< reconstructed gas velocity v - sum_j eps_j Dv_j (n x dim)
+  HostView<Real***> dv;    ///< Dv_j = v_dj - v_g = T_sj grad P / rho_g (HPL18 eq. 24), (n x N x dim)
+};
+
+class OneFluidDust {
+ public:
+  OneFluidDust(const DustSettings& s, int n, int dim);
+
+  const DustSettings& settings() const { return s_; }
+  int nspecies() const { return s_.nspecies; }
+
+  /// Sets eps_j from host data (n x N, row-major) before initialise().
+  void set_eps(const std::vector<Real>& eps);
+  /// Converts the initial eps_j into the evolved variable (needs rho).
+  void initialise(const Particles& p);
+
+  /// Leapfrog pieces (see SphSystem::step): var += dt/2 dvar, var_pred = var + dt/2 dvar.
+  void kick_predict(Real half_dt);
+  /// var += dt/2 dvar, then the negative-eps floor; returns the dust mass it adds
+  /// (sum m |eps_j| over the floored values: the negative dust mass removed).
+  Real kick(const Particles& p, Real half_dt);
+
+  /// Dusty EOS, drag times, forces, du/dt and dvar/dt for velocities vel and
+  /// energies u (replaces update_eos + compute_forces of the gas engine).
+  void compute_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg, const RealView2& vel,
+                      const RealView1& u);
+
+  /// Dust time-step (HPL18 eq. 44 or PL15 eq. 16) over the particles; counts
+  /// particles with eps T_s > C_cour h / c_s (PL15 eq. 18).
+  Real timestep(const Particles& p, const SphConfig& cfg);
+
+  /// eps_j of the current state (n x N) on the device.
+  RealView2 eps(const Particles& p) const;
+  /// sum_a m_a eps_a (current state).
+  Real dust_mass(const Particles& p) const;
+  /// sum_a m_a (1 - eps_a) u_a, or sum m u~ (thermal part of PL15 eq. 40 / HPL18 eq. 52).
+  Real thermal_energy(const Particles& p, const SphConfig& cfg) const;
+  /// Total dust mass added by the floor since the start (dust mass before
+  /// flooring = dust_mass() - floored_mass()).
+  Real floored_mass() const { return floored_mass_; }
+  /// Particles with eps T_s > Courant time in the last time-step evaluation.
+  int tva_violations() const { return tva_violations_; }
+
+  DustSnapshot snapshot(const Particles& p) const;
+
+  /// Evolves only the dust variable with the particles fixed (PL15 sec. 4.3),
+  /// with the same kick-predict-kick scheme (Heun's method for fixed
+  /// positions), dt = C0 of the dust criterion. Returns the number of steps.
+  int advance_dust_only(SphSystem& sys, Real t_end);
+
+  /// The evolved variable and its predicted value / time derivative (n x N).
+  RealView2 var, var_pred, dvar;
+  /// Per-particle drag data: T_sj (n x N) and the pair coefficient C_j (n x N):
+  /// D_j = eps_j tilde T_sj (eps variable) or tilde T_sj (S variable).
+  RealView2 ts, coef;
+  RealView1 eps_tot;  ///< eps of the state used by the forces
+  RealView1 eps_ts;   ///< sum_j eps_j T_sj (eq. 18)
+  RealView1 d_tot;    ///< sum_j eps_j tilde T_sj
+  RealView1 uloc;     ///< gas u used in the pair terms
+  RealView2 gforce;   ///< -(hydro acceleration) = (1 - eps) Delta f (PL15 eq. 29-30), n x dim
+  RealView1 kdrag_view() const { return kdrag_; }
+  RealView1 size_view() const { return size_; }
+  RealView1 tstop_view() const { return tstop_; }
+  /// Packed per-particle data gathered by the dusty force loops.
+  Kokkos::View<Real**, Kokkos::LayoutRight, MemSpace> pack;
+
+ private:
+  DustSettings s_;
+  RealView1 kdrag_, size_, tstop_;  ///< per species
+  Real floored_mass_ = 0.0;
+  int tva_violations_ = 0;
+  bool warned_ = false;
+};
+
+}  // namespace mote::sph

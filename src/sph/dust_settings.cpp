@@ -1,0 +1,120 @@
+// Deck table [dust] of the one-fluid SPH dust method (PL15, HPL18); see
+// include/mote/sph/dust_settings.hpp.
+#include "mote/sph/dust_settings.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "mote/core/deck.hpp"
+#include "mote/core/deck_schema.hpp"
+#include "mote/dust/size_distribution.hpp"
+
+namespace mote::sph {
+
+void DustSettings::declare(core::DeckSchema& s) {
+  s.table("dust", "One-fluid dust in the terminal-velocity approximation (PL15; N species: MULTIGRAIN, HPL18).",
+          /*optional=*/true);
+  s.string("dust.method")
+      .default_value(std::string("diffusion"))
+      .one_of({"diffusion", "multigrain"})
+      .doc("diffusion (PL15) and multigrain (HPL18) are the same scheme; N = species.");
+  s.integer("dust.species").default_value(1LL).min(1).doc("Number of dust species N (one View extent).");
+  s.string("dust.variable")
+      .default_value(std::string("epsilon"))
+      .one_of({"epsilon", "sqrt_rho_eps"})
+      .doc("Evolved variable: eps_j, or S_j = sqrt(rho eps_j) (PL15 app. B, HPL18 eq. 51).");
+  s.string("dust.discretisation")
+      .default_value(std::string("second_derivatives"))
+      .one_of({"second_derivatives", "first_derivatives"})
+      .doc("Direct second derivatives (PL15 eq. 43) or two first derivatives (PL15 eq. 26, 29-30).");
+  s.string("dust.energy")
+      .default_value(std::string("u"))
+      .one_of({"u", "u_tilde"})
+      .doc("Evolve u (PL15 eq. 27/45, HPL18 eq. 56) or u~ = (1 - eps) u (HPL18 eq. 55).");
+  s.string("dust.drag")
+      .default_value(std::string("constant_K"))
+      .one_of({"constant_K", "epstein", "constant_ts"})
+      .doc("Drag law: constant K_j (HPL18 eq. 16), linear Epstein (PL15 eq. 20), constant t_s.");
+  s.real_array("dust.K")
+      .default_value(std::vector<double>{1000.0})
+      .greater_than(0.0)
+      .doc("Drag coefficients K_j (one value: all species).");
+  s.real_array("dust.stopping_time")
+      .default_value(std::vector<double>{0.1})
+      .greater_than(0.0)
+      .unit("code time")
+      .doc("t_s per species for drag = constant_ts.");
+  s.string("dust.sizes_from")
+      .default_value(std::string("list"))
+      .one_of({"list", "power_law"})
+      .doc("Grain sizes and fractions from lists or the power law of HPL18 eq. 63 on a log grid.");
+  s.real_array("dust.sizes")
+      .default_value(std::vector<double>{1.0})
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Grain sizes s_j (epstein, sizes_from = list).");
+  s.real_array("dust.eps")
+      .default_value(std::vector<double>{0.01})
+      .min(0.0)
+      .doc("Initial dust fractions eps_j (sizes_from = list; one value: each species).");
+  s.real("dust.s_min").default_value(5.99e-6).greater_than(0.0).unit("code length").doc("Power law: lower cell edge.");
+  s.real("dust.s_max").default_value(0.167).greater_than(0.0).unit("code length").doc("Power law: upper cell edge.");
+  s.real("dust.p").default_value(3.5).doc("Power law: index p of d eps = eps0 s^(3-p) ds (HPL18 eq. 63).");
+  s.real("dust.eps_total").default_value(1.0 / 101.0).min(0.0).less_than(1.0).doc("Power law: total eps.");
+  s.real("dust.rho_grain").default_value(1.0).greater_than(0.0).unit("code density").doc("Intrinsic grain density.");
+  s.string("dust.timestep")
+      .default_value(std::string("combined"))
+      .one_of({"combined", "separate"})
+      .doc("HPL18 eq. 44 (combined) or PL15 eq. 16 (separate diffusion limit).");
+  s.real("dust.C0").default_value(0.3).greater_than(0.0).max(1.0).doc("Safety factor C0 of the dust time-step.");
+  s.boolean("dust.floor_negative").default_value(true).doc("Set eps_j < 0 to zero and report the mass (PL15 4.4.2).");
+}
+
+DustSettings DustSettings::from_deck(const core::Deck& d) {
+  DustSettings s;
+  s.nspecies = static_cast<int>(d.integer("dust.species"));
+  s.variable = d.string("dust.variable") == "epsilon" ? DustVariable::Epsilon : DustVariable::SqrtRhoEps;
+  s.discretisation = d.string("dust.discretisation") == "second_derivatives" ? DustDiscretisation::SecondDerivatives
+                                                                             : DustDiscretisation::FirstDerivatives;
+  s.energy = d.string("dust.energy") == "u" ? DustEnergy::U : DustEnergy::UTilde;
+  const std::string drag = d.string("dust.drag");
+  s.drag = drag == "constant_K" ? DragLaw::ConstantK
+                                : (drag == "epstein" ? DragLaw::Epstein : DragLaw::ConstantStoppingTime);
+  s.k_drag = d.real_array("dust.K");
+  s.stopping_time = d.real_array("dust.stopping_time");
+  s.rho_grain = d.real("dust.rho_grain");
+  if (d.string("dust.sizes_from") == "power_law") {
+    const dust::SizeBins b = dust::power_law_bins(s.nspecies, d.real("dust.s_min"), d.real("dust.s_max"),
+                                                  d.real("dust.p"), d.real("dust.eps_total"));
+    s.sizes = b.size;
+    s.eps = b.fraction;
+  } else {
+    s.sizes = d.real_array("dust.sizes");
+    s.eps = d.real_array("dust.eps");
+  }
+  s.timestep = d.string("dust.timestep") == "combined" ? DustTimestep::Combined : DustTimestep::Separate;
+  s.c_dust = d.real("dust.C0");
+  s.floor_negative = d.boolean("dust.floor_negative");
+  s.validate();
+  return s;
+}
+
+Real DustSettings::species_value(const std::vector<Real>& list, int j) const {
+  if (list.empty()) return 0.0;
+  return list.size() == 1 ? list[0] : list[j];
+}
+
+void DustSettings::validate() const {
+  if (nspecies < 1) throw std::invalid_argument("dust: species must be >= 1");
+  auto check = [&](const std::vector<Real>& l, const char* name, bool needed) {
+    if (!needed) return;
+    if (!(l.size() == 1 || static_cast<int>(l.size()) == nspecies))
+      throw std::invalid_argument(std::string("dust.") + name + " needs 1 or " + std::to_string(nspecies) + " entries");
+  };
+  check(k_drag, "K", drag == DragLaw::ConstantK);
+  check(sizes, "sizes", drag == DragLaw::Epstein);
+  check(stopping_time, "stopping_time", drag == DragLaw::ConstantStoppingTime);
+  if (!eps.empty()) check(eps, "eps", true);
+}
+
+}  // namespace mote::sph

@@ -1,0 +1,249 @@
+// State, integration, time-step, floor and diagnostics of the one-fluid dust
+// (PL15 sec. 2.2, 3.3, 4.4.2, app. B; HPL18 sec. 2.2, eq. 24-25, 43-44, 52);
+// the particle loops are in dust_forces.cpp. See one_fluid_dust.hpp.
+#include "mote/sph/one_fluid_dust.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "mote/core/log.hpp"
+#include "mote/core/loops.hpp"
+#include "mote/sph/sph_system.hpp"
+
+namespace mote::sph {
+
+OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
+  s_.validate();
+  const int ns = s_.nspecies;
+  var = RealView2("sph::dust_var", n, ns);
+  var_pred = RealView2("sph::dust_var_pred", n, ns);
+  dvar = RealView2("sph::dust_dvar", n, ns);
+  ts = RealView2("sph::dust_ts", n, ns);
+  coef = RealView2("sph::dust_coef", n, ns);
+  eps_tot = RealView1("sph::dust_eps", n);
+  eps_ts = RealView1("sph::dust_eps_ts", n);
+  d_tot = RealView1("sph::dust_dtot", n);
+  uloc = RealView1("sph::dust_u", n);
+  gforce = RealView2("sph::dust_gforce", n, dim);
+  kdrag_ = RealView1("sph::dust_K", ns);
+  size_ = RealView1("sph::dust_size", ns);
+  tstop_ = RealView1("sph::dust_tstop", ns);
+  auto hk = Kokkos::create_mirror_view(kdrag_);
+  auto hs = Kokkos::create_mirror_view(size_);
+  auto ht = Kokkos::create_mirror_view(tstop_);
+  for (int j = 0; j < ns; ++j) {
+    hk(j) = s_.drag == DragLaw::ConstantK ? s_.species_value(s_.k_drag, j) : 1.0;
+    hs(j) = s_.drag == DragLaw::Epstein ? s_.species_value(s_.sizes, j) : 0.0;
+    ht(j) = s_.drag == DragLaw::ConstantStoppingTime ? s_.species_value(s_.stopping_time, j) : 0.0;
+  }
+  Kokkos::deep_copy(kdrag_, hk);
+  Kokkos::deep_copy(size_, hs);
+  Kokkos::deep_copy(tstop_, ht);
+  if (!s_.eps.empty()) {
+    auto he = Kokkos::create_mirror_view(var);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < ns; ++j) he(i, j) = s_.species_value(s_.eps, j);
+    Kokkos::deep_copy(var, he);
+  }
+}
+
+void OneFluidDust::set_eps(const std::vector<Real>& eps) {
+  const int n = static_cast<int>(var.extent(0)), ns = s_.nspecies;
+  if (static_cast<int>(eps.size()) != n * ns) throw std::invalid_argument("dust: eps needs n x N values");
+  auto he = Kokkos::create_mirror_view(var);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < ns; ++j) he(i, j) = eps[i * ns + j];
+  Kokkos::deep_copy(var, he);
+}
+
+void OneFluidDust::initialise(const Particles& p) {
+  // var holds eps_j; S_j = sqrt(rho eps_j) (PL15 eq. B1) needs the density.
+  if (s_.variable == DustVariable::SqrtRhoEps) {
+    const auto v = var;
+    const auto rho = p.rho;
+    const int ns = s_.nspecies;
+    par_for(
+        "sph::dust_to_s", 0, p.n, KOKKOS_LAMBDA(int a) {
+          for (int j = 0; j < ns; ++j) v(a, j) = math::sqrt(rho(a) * (v(a, j) > 0.0 ? v(a, j) : 0.0));
+        });
+  }
+  Kokkos::deep_copy(var_pred, var);
+  Kokkos::deep_copy(dvar, 0.0);
+  floored_mass_ = 0.0;
+}
+
+void OneFluidDust::kick_predict(Real hdt) {
+  const auto v = var;
+  const auto vp = var_pred;
+  const auto dv = dvar;
+  const int ns = s_.nspecies;
+  par_for(
+      "sph::dust_kick_predict", 0, static_cast<int>(var.extent(0)), KOKKOS_LAMBDA(int a) {
+        for (int j = 0; j < ns; ++j) {
+          const Real vh = v(a, j) + hdt * dv(a, j);
+          v(a, j) = vh;
+          vp(a, j) = vh + hdt * dv(a, j);
+        }
+      });
+}
+
+Real OneFluidDust::kick(const Particles& p, Real hdt) {
+  const auto v = var;
+  const auto dv = dvar;
+  const auto m = p.m;
+  const int ns = s_.nspecies;
+  const bool floor = s_.floor_negative && s_.variable == DustVariable::Epsilon;
+  Real removed = 0.0;
+  par_reduce(
+      "sph::dust_kick", 0, p.n,
+      KOKKOS_LAMBDA(int a, Real& rm) {
+        for (int j = 0; j < ns; ++j) {
+          Real e = v(a, j) + hdt * dv(a, j);
+          if (floor && e < 0.0) {  // PL15 sec. 4.4.2
+            rm -= m(a) * e;
+            e = 0.0;
+          }
+          v(a, j) = e;
+        }
+      },
+      removed);
+  floored_mass_ += removed;
+  return removed;
+}
+
+Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
+  const auto h = p.h;
+  const auto cs = p.cs;
+  const auto type = p.type;
+  const auto e = eps_tot;
+  const auto ets = eps_ts;
+  const Real c0 = s_.c_dust;
+  const Real ccour = cfg.c_cour;
+  const bool combined = s_.timestep == DustTimestep::Combined;
+  Real dt = 1e300;
+  par_reduce(
+      "sph::dust_timestep", 0, p.n,
+      KOKKOS_LAMBDA(int a, Real& dmin) {
+        if (type(a) != kGas) return;
+        const Real d =
+            combined ? dt_dust_combined(c0, h(a), cs(a), e(a), ets(a)) : dt_dust_diffusion(c0, h(a), cs(a), ets(a));
+        dmin = d < dmin ? d : dmin;
+      },
+      Kokkos::Min<Real>(dt));
+  int bad = 0;
+  par_reduce(
+      "sph::dust_tva_check", 0, p.n,
+      KOKKOS_LAMBDA(int a, int& c) {
+        if (type(a) == kGas && ets(a) > ccour * h(a) / cs(a)) ++c;  // PL15 eq. 18
+      },
+      bad);
+  tva_violations_ = bad;
+  if (bad > 0 && !warned_) {
+    log::warn("sph dust: eps T_s exceeds the Courant time-step on ", bad,
+              " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)");
+    warned_ = true;
+  }
+  return dt;
+}
+
+RealView2 OneFluidDust::eps(const Particles& p) const {
+  RealView2 out("sph::dust_eps_out", var.extent(0), var.extent(1));
+  const auto v = var;
+  const auto rho = p.rho;
+  const int ns = s_.nspecies;
+  const bool svar = s_.variable == DustVariable::SqrtRhoEps;
+  par_for(
+      "sph::dust_eps", 0, p.n, KOKKOS_LAMBDA(int a) {
+        for (int j = 0; j < ns; ++j) out(a, j) = svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+      });
+  return out;
+}
+
+Real OneFluidDust::dust_mass(const Particles& p) const {
+  const auto v = var;
+  const auto rho = p.rho;
+  const auto m = p.m;
+  const int ns = s_.nspecies;
+  const bool svar = s_.variable == DustVariable::SqrtRhoEps;
+  Real md = 0.0;
+  par_reduce(
+      "sph::dust_mass", 0, p.n,
+      KOKKOS_LAMBDA(int a, Real& s) {
+        Real e = 0.0;
+        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+        s += m(a) * e;
+      },
+      md);
+  return md;
+}
+
+Real OneFluidDust::thermal_energy(const Particles& p, const SphConfig& cfg) const {
+  if (cfg.eos != EosType::Adiabatic) return 0.0;
+  const auto v = var;
+  const auto rho = p.rho;
+  const auto m = p.m;
+  const auto u = p.u;
+  const int ns = s_.nspecies;
+  const bool svar = s_.variable == DustVariable::SqrtRhoEps;
+  const bool utilde = s_.energy == DustEnergy::UTilde;
+  Real eth = 0.0;
+  par_reduce(
+      "sph::dust_thermal", 0, p.n,
+      KOKKOS_LAMBDA(int a, Real& s) {
+        Real e = 0.0;
+        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+        s += m(a) * (utilde ? u(a) : (1.0 - e) * u(a));  // PL15 eq. 40, HPL18 eq. 52
+      },
+      eth);
+  return eth;
+}
+
+DustSnapshot OneFluidDust::snapshot(const Particles& p) const {
+  DustSnapshot s;
+  const int n = p.n, ns = s_.nspecies, dim = p.dim;
+  auto e = eps(p);
+  s.eps = Kokkos::create_mirror(e);
+  Kokkos::deep_copy(s.eps, e);
+  auto hv = Kokkos::create_mirror(p.v);
+  Kokkos::deep_copy(hv, p.v);
+  auto hg = Kokkos::create_mirror(gforce);
+  Kokkos::deep_copy(hg, gforce);
+  auto hts = Kokkos::create_mirror(ts);
+  Kokkos::deep_copy(hts, ts);
+  s.v_gas = HostView<Real**>("sph::dust_vgas", n, dim);
+  s.dv = HostView<Real***>("sph::dust_dv", n, ns, dim);
+  for (int a = 0; a < n; ++a) {
+    Real et = 0.0;
+    for (int j = 0; j < ns; ++j) et += s.eps(a, j);
+    for (int d = 0; d < dim; ++d) {
+      Real sum = 0.0;
+      for (int j = 0; j < ns; ++j) {
+        // HPL18 eq. 24: Dv_j = T_sj grad P / rho_g, grad P / rho_g = g / (1 - eps).
+        const Real dvj = hts(a, j) * hg(a, d) / (1.0 - et);
+        s.dv(a, j, d) = dvj;
+        sum += s.eps(a, j) * dvj;
+      }
+      s.v_gas(a, d) = hv(a, d) - sum;  // v_g = v - eps Dv (HPL18 eq. 10, 25)
+    }
+  }
+  return s;
+}
+
+int OneFluidDust::advance_dust_only(SphSystem& sys, Real t_end) {
+  Particles& p = sys.particles();
+  Real t = 0.0;
+  int steps = 0;
+  while (t < t_end * (1.0 - 1e-14)) {
+    Real dt = timestep(p, sys.config());
+    if (t + dt > t_end) dt = t_end - t;
+    kick_predict(0.5 * dt);
+    sys.compute_accelerations(p.v, p.u);
+    kick(p, 0.5 * dt);
+    t += dt;
+    ++steps;
+  }
+  return steps;
+}
+
+}  // namespace mote::sph

@@ -1,0 +1,161 @@
+// Laws and bookkeeping of the one-fluid SPH dust: drag times (PL15 eq. 7, 20;
+// HPL18 eq. 14-18), the HPL18 Table 1 size grid (eq. 63), the time-step
+// criteria (HPL18 eq. 43-44, PL15 eq. 16, 18), the negative-eps floor with
+// mass accounting (PL15 sec. 4.4.2) and the [dust] deck table.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "mote/core/deck.hpp"
+#include "mote/core/deck_schema.hpp"
+#include "mote/dust/size_distribution.hpp"
+#include "sph_dust_problems.hpp"
+
+namespace {
+
+using mote::Real;
+using namespace mote::sph;
+
+TEST(SphDustLaws, StoppingTimesSingleSpecies) {
+  // PL15 eq. 7: t_s = eps (1 - eps) rho / K.
+  EXPECT_DOUBLE_EQ(ts_constant_k(0.3, 0.3, 2.0, 10.0), 0.3 * 0.7 * 2.0 / 10.0);
+  // PL15 eq. 20: t_s = rho_grain s sqrt(pi gamma / 8) / (rho c_s).
+  const double g = 5.0 / 3.0;
+  EXPECT_NEAR(ts_epstein(3.0, 0.1, 2.0, 0.5, g), 3.0 * 0.1 * std::sqrt(M_PI * g / 8.0) / (2.0 * 0.5), 1e-15);
+  // HPL18 eq. 44 limits: Courant with c~_s, and PL15 eq. 16 at large eps T_s.
+  EXPECT_NEAR(dt_dust_combined(0.3, 0.01, 1.0, 0.5, 0.0), 0.3 * 0.01 / std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(dt_dust_combined(0.3, 0.01, 1.0, 0.5, 100.0) / dt_dust_diffusion(0.3, 0.01, 1.0, 100.0), 1.0, 1e-6);
+}
+
+TEST(SphDustLaws, PowerLawBinsReproduceTable1) {
+  // HPL18 Table 1: p = 3.5, s_min = 0.0599 um, s_max = 1.67 mm, eps = 1/101.
+  const auto b = mote::dust::power_law_bins(10, 5.99e-6, 0.167, 3.5, 1.0 / 101.0);
+  const double s_ref[10] = {1.00e-5, 2.78e-5, 7.74e-5, 2.15e-4, 5.99e-4, 1.67e-3, 4.64e-3, 1.29e-2, 3.59e-2, 1.00e-1};
+  const double e_ref[10] = {3.99e-5, 6.65e-5, 1.11e-4, 1.85e-4, 3.09e-4, 5.15e-4, 8.59e-4, 1.43e-3, 2.39e-3, 3.99e-3};
+  double sum = 0.0;
+  for (int j = 0; j < 10; ++j) {
+    EXPECT_NEAR(b.size[j] / s_ref[j], 1.0, 5e-3) << j;
+    EXPECT_NEAR(b.fraction[j] / e_ref[j], 1.0, 5e-3) << j;
+    sum += b.fraction[j];
+  }
+  EXPECT_NEAR(sum, 1.0 / 101.0, 1e-15);
+}
+
+// Device values of T_sj and tilde T_sj for N = 3 Epstein species on a uniform
+// 1D box: T_sj from eq. 13-14, tilde T_sj from eq. 15, and the identity of eq. 18.
+TEST(SphDustLaws, EpsteinMultigrainTimes) {
+  SphConfig cfg;
+  cfg.dim = 1;
+  cfg.eos = EosType::Adiabatic;
+  cfg.gamma = 5.0 / 3.0;
+  Box box;
+  box.dim = 1;
+  box.lo[0] = 0.0;
+  box.hi[0] = 1.0;
+  box.periodic[0] = true;
+  ParticleSetup s;
+  s.dim = 1;
+  for (int i = 0; i < 50; ++i) {
+    s.x.push_back((i + 0.5) / 50);
+    s.m.push_back(1.0 / 50);
+    s.h.push_back(1.2 / 50);
+    s.u.push_back(1.0);
+  }
+  SphSystem sys(cfg, box);
+  sys.set_particles(s);
+  DustSettings ds;
+  ds.nspecies = 3;
+  ds.drag = DragLaw::Epstein;
+  ds.sizes = {1e-3, 1e-2, 1e-1};
+  ds.rho_grain = 3.0;
+  ds.eps = {0.01, 0.05, 0.1};
+  sys.set_dust(ds);
+  sys.initialise();
+  const OneFluidDust& d = *sys.dust();
+  auto ts = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.ts);
+  auto coef = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.coef);
+  auto ets = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.eps_ts);
+  auto dtot = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.d_tot);
+  const Snapshot snap = sys.snapshot();
+  auto cs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sys.particles().cs);
+  const double eps = 0.16;
+  for (int a = 0; a < 50; a += 7) {
+    // Gas sound speed from P = (gamma - 1)(1 - eps) rho u (PL15 eq. 14): c_s^2 = gamma (gamma - 1) u.
+    EXPECT_NEAR(cs(a), std::sqrt(cfg.gamma * (cfg.gamma - 1.0) * 1.0), 1e-12);
+    double sum = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      const double t = 3.0 * ds.sizes[j] * std::sqrt(M_PI * cfg.gamma / 8.0) / (snap.rho(a) * cs(a));
+      EXPECT_NEAR(ts(a, j) / t, 1.0, 1e-12);
+      sum += ds.eps[j] * t;
+    }
+    EXPECT_NEAR(ets(a) / sum, 1.0, 1e-12);
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(coef(a, j), ds.eps[j] * (ts(a, j) - sum) / (1.0 - eps), 1e-14);
+    EXPECT_NEAR(dtot(a) / sum, 1.0, 1e-12);  // HPL18 eq. 18
+  }
+}
+
+// PL15 sec. 4.4.2: eps_j < 0 is set to zero and the removed mass is accounted.
+TEST(SphDustLaws, NegativeFloorAccounting) {
+  const int n = 6;
+  Particles p;
+  p.allocate(n, 1);
+  Kokkos::deep_copy(p.m, 0.5);
+  Kokkos::deep_copy(p.rho, 1.0);
+  DustSettings ds;
+  ds.nspecies = 2;
+  OneFluidDust d(ds, n, 1);
+  d.set_eps({0.1, 0.2, 1e-6, 0.0, 0.3, 0.0, 2e-6, 1e-6, 0.0, 0.1, 0.05, 0.05});
+  d.initialise(p);
+  auto dv = Kokkos::create_mirror_view(d.dvar);
+  const double rates[12] = {-0.1, 0.1, -4e-5, 0.0, 0.2, -1e-5, 0.0, 0.0, -1e-4, 0.0, 0.0, 0.0};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2; ++j) dv(i, j) = rates[2 * i + j];
+  Kokkos::deep_copy(d.dvar, dv);
+  const double m0 = d.dust_mass(p);
+  const double removed = d.kick(p, 0.1);
+  // Negative after the kick: 1e-6 - 4e-6 = -3e-6, 0 - 1e-6, 0 - 1e-5.
+  const double expect = 0.5 * (3e-6 + 1e-6 + 1e-5);
+  EXPECT_NEAR(removed, expect, 1e-18);
+  EXPECT_NEAR(d.floored_mass(), expect, 1e-18);
+  auto e = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.var);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2; ++j) EXPECT_GE(e(i, j), 0.0);
+  // Mass budget: before + sum m dt dvar = after - removed... i.e. after = before + change + removed.
+  double change = 0.0;
+  for (double r : rates) change += 0.5 * 0.1 * r;
+  EXPECT_NEAR(d.dust_mass(p), m0 + change + expect, 1e-15);
+}
+
+// PL15 eq. 18 warning count: eps t_s > C h / c_s at weak drag, none at strong drag.
+TEST(SphDustLaws, TerminalVelocityWarning) {
+  mote::sph::testing::DustyWaveSetup w;
+  w.K = 1.0;
+  SphSystem weak = mote::sph::testing::make_dustywave(w);
+  EXPECT_EQ(weak.dust()->tva_violations(), 100);
+  w.K = 1000.0;
+  SphSystem strong = mote::sph::testing::make_dustywave(w);
+  EXPECT_EQ(strong.dust()->tva_violations(), 0);
+}
+
+TEST(SphDustLaws, DeckTable) {
+  mote::core::DeckSchema schema;
+  DustSettings::declare(schema);
+  const auto d = mote::core::Deck::parse(
+      "[dust]\nspecies = 10\ndrag = \"epstein\"\nsizes_from = \"power_law\"\nrho_grain = 3.0\n"
+      "discretisation = \"first_derivatives\"\nvariable = \"sqrt_rho_eps\"\nenergy = \"u_tilde\"\n",
+      "t.toml", schema);
+  const DustSettings s = DustSettings::from_deck(d);
+  EXPECT_EQ(s.nspecies, 10);
+  EXPECT_EQ(s.drag, DragLaw::Epstein);
+  EXPECT_EQ(s.discretisation, DustDiscretisation::FirstDerivatives);
+  EXPECT_EQ(s.variable, DustVariable::SqrtRhoEps);
+  EXPECT_EQ(s.energy, DustEnergy::UTilde);
+  ASSERT_EQ(s.sizes.size(), 10u);
+  EXPECT_NEAR(s.sizes[0] / 1e-5, 1.0, 5e-3);
+  EXPECT_NEAR(s.eps[9] / 3.99e-3, 1.0, 5e-3);
+  const auto bad = mote::core::Deck::parse("[dust]\nspecies = 3\nK = [1.0, 2.0]\n", "t.toml", schema);
+  EXPECT_THROW(DustSettings::from_deck(bad), std::invalid_argument);
+}
+
+}  // namespace
