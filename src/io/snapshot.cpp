@@ -132,7 +132,8 @@ std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const 
   }
   for (const auto& f : particle_fields_) {
     const std::string dims = std::to_string(n_particles_) + (f.components > 1 ? " " + std::to_string(f.components) : "");
-    os << "   <Attribute Name=\"" << f.name << "\" AttributeType=\"" << (f.components > 1 ? "Vector" : "Scalar")
+    const char* type = f.components == 1 ? "Scalar" : f.components == 3 ? "Vector" : "Matrix";
+    os << "   <Attribute Name=\"" << f.name << "\" AttributeType=\"" << type
        << "\" Center=\"Node\">\n";
     os << "    <DataItem Dimensions=\"" << dims << (f.integer ? int_item : float_item)
        << h5_name << ":/particles/" << f.name << "</DataItem>\n";

@@ -6,6 +6,7 @@
 #include "mote/core/comm.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 
 namespace mote::sph {
 
@@ -78,6 +79,17 @@ void SphSimulation::write_snapshot(io::SnapshotWriter& out) const {
   out.particle_field("u", vec(snap.u).data(), 1, {"code specific energy", units_.specific_energy()});
   out.particle_field("pressure", vec(snap.P).data(), 1, {"code pressure", units_.pressure()});
   out.particle_field("mass", vec(snap.m).data(), 1, {"code mass", units_.mass});
+  if (const auto* dust = system_->dust()) {
+    const auto ds = dust->snapshot(system_->particles());
+    const int ns = static_cast<int>(ds.eps.extent(1));
+    std::vector<double> eps(static_cast<size_t>(n) * ns), vg(xyz.size(), 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int k = 0; k < ns; ++k) eps[static_cast<size_t>(i) * ns + k] = ds.eps(i, k);
+      for (int d = 0; d < dim; ++d) vg[3 * i + d] = ds.v_gas(i, d);
+    }
+    out.particle_field("dust_fraction", eps.data(), ns, {"1", 1.0});
+    out.particle_field("gas_velocity", vg.data(), 3, {"code velocity", units_.velocity()});
+  }
   std::vector<std::int32_t> type(snap.type.data(), snap.type.data() + n), id(snap.id.data(), snap.id.data() + n);
   out.particle_field("type", type.data(), {"1", 1.0});
   out.particle_field("id", id.data(), {"1", 1.0});
@@ -99,6 +111,11 @@ void SphSimulation::save_state(io::H5File& f) const {
   f.write("/state/alpha", scalar, to_host(p.alpha).data());
   f.write("/state/type", scalar, ints_to_host(p.type).data());
   f.write("/state/id", scalar, ints_to_host(p.id).data());
+  if (const auto* dust = system_->dust()) {
+    const hsize_t ns = dust->var.extent(1);
+    f.write("/state/dust_var", Block::whole({n, ns}), to_host(dust->var, static_cast<int>(ns)).data());
+    f.write("/state/dust_dvar", Block::whole({n, ns}), to_host(dust->dvar, static_cast<int>(ns)).data());
+  }
   f.write_attribute("/state", "time", system_->time());
   f.write_attribute("/state", "dt_next", system_->next_dt());
   f.write_attribute("/state", "steps", static_cast<std::int64_t>(system_->steps()));
@@ -123,6 +140,14 @@ void SphSimulation::load_state(const io::H5File& f) {
   read1("/state/divv", p.divv);
   read1("/state/divv_old", system_->divv_old());
   read1("/state/alpha", p.alpha);
+  if (auto* dust = system_->dust()) {
+    const hsize_t ns = dust->var.extent(1);
+    std::vector<double> dbuf(n * ns);
+    f.read("/state/dust_var", Block::whole({n, ns}), dbuf.data());
+    from_host(dbuf, dust->var);
+    f.read("/state/dust_dvar", Block::whole({n, ns}), dbuf.data());
+    from_host(dbuf, dust->dvar);
+  }
   std::vector<std::int32_t> ibuf(n);
   for (const auto& [name, view] : {std::pair<const char*, IntView1>{"/state/type", p.type}, {"/state/id", p.id}}) {
     f.read(name, scalar, ibuf.data());

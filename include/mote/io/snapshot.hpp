@@ -44,7 +44,8 @@ class SnapshotWriter {
   /// offset + count); positions as (count, 3) row-major (unused dimensions 0),
   /// written to /particles/position and described as an XDMF point cloud.
   void particles(long long n_total, long long offset, long long count, const double* xyz);
-  /// Per-particle data of this rank: `components` values per particle (1 or 3).
+  /// Per-particle data of this rank: `components` values per particle (1: scalar,
+  /// 3: vector, other: one column per component, e.g. dust species).
   void particle_field(const std::string& name, const double* data, int components, const FieldUnit& unit);
   void particle_field(const std::string& name, const std::int32_t* data, const FieldUnit& unit);
 
