@@ -36,6 +36,8 @@ void DustSettings::declare(core::DeckSchema& s) {
   s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
   s.boolean("dust.drag").default_value(true).doc("Implicit gas drag (eq. 13-14).");
   s.boolean("dust.gravity").default_value(true).doc("Stellar gravity and curvature sources (eq. 6).");
+  s.boolean("dust.radial_fluxes").default_value(true).doc(
+      "Fluxes through the radial faces; false: every column evolves alone (vertical settling tests, RBO24 sec. 3.6).");
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, double GM_code) {
@@ -53,6 +55,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSyste
   st.diffusion = d.boolean("dust.diffusion");
   st.drag = d.boolean("dust.drag");
   st.gravity = d.boolean("dust.gravity");
+  st.radial_fluxes = d.boolean("dust.radial_fluxes");
   st.GM = GM_code;
   st.boundaries = mesh::Boundaries::from_deck(d);
   return st;
@@ -139,10 +142,10 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   auto Rc = grid_.Rc, Re = grid_.Re, tan_tc = grid_.tan_tc, tan_te = grid_.tan_te;
   auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
   auto AR = grid_.AR, AZ = grid_.AZ;
-  auto rho_g = gas_.rho;
+  auto rho_g = gas_.rho, gas_D = gas_D_;
   auto sc = schmidt_;
   const auto coef = diffusion_;
-  const bool diffuse = settings_.diffusion;
+  const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
   const auto& b = settings_.boundaries;
   const bool closed_in = grid_.has_inner_boundary() && b.inner == mesh::BoundaryKind::Closed;
   const bool closed_out = grid_.has_outer_boundary() && b.outer == mesh::BoundaryKind::Closed;
@@ -162,7 +165,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       }
     }
     Real f[kDustVars] = {0, 0, 0, 0};
-    const bool closed = (i == ng && closed_in) || (i == ng + nr && closed_out);
+    const bool closed = !radial || (i == ng && closed_in) || (i == ng + nr && closed_out);
     if (!closed) {
       const Real vl = ql[kVR], vr = qr[kVR];  // normal = R_hat
       const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
@@ -203,7 +206,9 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
     Real f[kDustVars] = {0, 0, 0, 0};
     const bool closed = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
     if (!closed) {
-      const Real sn = sin_te(j), cn = cos_te(j);
+      // Without radial fluxes the radial velocity is not transported through
+      // the (tilted) theta faces either: only v_Z moves mass along a column.
+      const Real sn = radial ? sin_te(j) : Real(0), cn = cos_te(j);
       const Real vl = -ql[kVR] * sn + ql[kVZ] * cn, vr = -qr[kVR] * sn + qr[kVZ] * cn;
       const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
       const Real R = Rc(i);
@@ -214,7 +219,17 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
       if (diffuse) {
         const auto u = [&](int a, int c) { return w(a, c, s, kRho) / rho_g(a, c); };
-        const Real fd = coef.theta_flux(u, i, j) / sc(s);
+        Real fd;
+        if (radial) {
+          fd = coef.theta_flux(u, i, j) / sc(s);
+        } else {
+          // Independent columns: two-point flux -D du/dZ along the column (harmonic
+          // face D, as the Wu weights), through the horizontal projection of the face.
+          const Real Za = R * tan_tc(j - 1), Zl = R * tan_tc(j), Zf = R * tan_te(j);
+          const Real Da = gas_D(i, j - 1), Dl = gas_D(i, j);
+          const Real k_face = Da * Dl / (Da * (Zl - Zf) + Dl * (Zf - Za));
+          fd = -k_face * (u(i, j) - u(i, j - 1)) * AZ(i, j) * cn / sc(s);
+        }
         const Real* up = fd > 0 ? ql : qr;
         f[kRho] += fd;
         f[kMomR] += fd * up[kVR];
@@ -317,7 +332,11 @@ double DustDynamics::max_dt() const {
   auto nu = gas_.nu;
   auto sc = schmidt_;
   const Real ca = settings_.cfl_advection, cd = settings_.cfl_diffusion;
-  const bool diffuse = settings_.diffusion;
+  const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
+  const bool gravity = settings_.gravity;
+  const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
+  const Real GM = settings_.GM;
+  auto Zc = grid_.Zc;
   Real dt = std::numeric_limits<Real>::max();
   Kokkos::parallel_reduce(
       "disc::dust_max_dt",
@@ -325,11 +344,24 @@ double DustDynamics::max_dt() const {
       KOKKOS_LAMBDA(int i, int j, int s, Real& m) {
         const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
         const Real vR = math::fabs(W_(i, j, s, kVR)), vZ = math::fabs(W_(i, j, s, kVZ));
-        if (vR > 0) m = math::min(m, ca * dR(i) / vR);
+        if (radial && vR > 0) m = math::min(m, ca * dR(i) / vR);
         if (vZ > 0) m = math::min(m, ca * dZ / vZ);
+        if (gravity) {
+          // Explicit sources (eq. 6): the displacement a dt^2 stays below a cell
+          // (not in eq. 18; it matters when the dust starts at rest or decoupled).
+          const Real R = Rc(i), Z = Zc(i, j), r2 = R * R + Z * Z;
+          const Real omega2 = GM / (r2 * math::sqrt(r2));
+          Real aR = -omega2 * R;
+          if (curvature) aR += math::square(W_(i, j, s, kVphi)) / R;
+          const Real aZ = math::fabs(omega2 * Z);
+          aR = math::fabs(aR);
+          if (radial && aR > 0) m = math::min(m, ca * math::sqrt(dR(i) / aR));
+          if (aZ > 0) m = math::min(m, ca * math::sqrt(dZ / aZ));
+        }
         if (diffuse) {
           const Real D = nu(i, j) / sc(s);
-          if (D > 0) m = math::min(m, cd * math::min(dR(i) * dR(i), dZ * dZ) / D);
+          const Real dx2 = radial ? math::min(dR(i) * dR(i), dZ * dZ) : dZ * dZ;
+          if (D > 0) m = math::min(m, cd * dx2 / D);
         }
       },
       Kokkos::Min<Real>(dt));

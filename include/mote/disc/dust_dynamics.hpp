@@ -7,7 +7,19 @@
 // turbulent diffusion F = -rho_g nu / Sc grad(rho / rho_g) (eq. 15) on the
 // Wu et al. stencil with the diffusive momentum flux of eq. 16, explicit
 // curvature and gravity sources (eq. 6) and implicit drag on the primitive
-// velocities (steps iv, viii; eq. 13-14). Time-step from eq. 17-19.
+// velocities (steps iv, viii; eq. 13-14). Time-step from eq. 17-19, plus
+// dt <= C_adv (dx / |a|)^1/2 for the explicit gravity + curvature acceleration a
+// (dust starting at rest or decoupled from the gas would otherwise take
+// steps that empty cells, breaking positivity and conservation).
+//
+// dust.radial_fluxes = false makes every column a 1D vertical problem
+// (settling-diffusion tests, RBO24 sec. 3.6 / VALIDATION C2): no flux through
+// the radial faces (advective or diffusive), no radial CFL terms, theta faces
+// transported by v_Z alone (the -v_R sin(theta) part of the face-normal
+// velocity is radial transport) and the diffusive theta-face flux the
+// two-point -D d(rho/rho_g)/dZ along the column (harmonic face D) instead of
+// the Wu stencil, whose cross terms would couple the columns.
+// v_R still relaxes to the local drift velocity through the sources and drag.
 //
 // All species are one extent of the state Views: Q(i, j, s, var) and
 // W(i, j, s, var) (primitives rho, v_R, v_phi, v_Z), ghost cells included.
@@ -37,6 +49,7 @@ struct DustSettings {
   double floor = 1e-40;          // density floor, code units
   double cfl_advection = 0.4, cfl_diffusion = 0.2;
   bool diffusion = true, drag = true, gravity = true;
+  bool radial_fluxes = true;     // false: no flux through radial faces (columns independent)
   double GM = 1.0;               // stellar G M in code units
   mesh::Boundaries boundaries;
 

@@ -1,0 +1,160 @@
+// The coupled dust-gas disc simulation (RBO24 sec. 3 and 6); see
+// include/mote/disc/disc_simulation.hpp.
+#include "mote/disc/disc_simulation.hpp"
+
+#include <climits>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "mote/core/log.hpp"
+#include "mote/core/loops.hpp"
+#include "mote/mesh/boundaries.hpp"
+#include "mote/mesh/grid_output.hpp"
+
+namespace mote::disc {
+
+namespace {
+
+/// Kernel of well_mixed, in a named function (CUDA extended lambdas cannot sit in a lambda).
+void fill_well_mixed(const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W, const RealView1& ratio,
+                     Real floor) {
+  auto rho = gas.rho, vR = gas.vR, vphi = gas.vphi, vZ = gas.vZ;
+  par_for(
+      "disc::well_mixed_dust", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(), 0,
+      static_cast<int>(W.extent(2)), KOKKOS_LAMBDA(int i, int j, int s) {
+        W(i, j, s, kRho) = math::max(ratio(s) * rho(i, j), floor);
+        W(i, j, s, kVR) = vR(i, j);
+        W(i, j, s, kVphi) = vphi(i, j);
+        W(i, j, s, kVZ) = vZ(i, j);
+      });
+}
+
+}  // namespace
+
+DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_to_gas, double floor) {
+  return [eps = std::move(dust_to_gas), floor](const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W) {
+    const int ns = static_cast<int>(W.extent(2));
+    if (static_cast<int>(eps.size()) != ns)
+      throw core::DeckError(log::cat("well-mixed dust: ", eps.size(), " dust-to-gas ratios for ", ns, " species"));
+    RealView1 ratio("disc::dust_to_gas", ns);
+    auto ratio_h = Kokkos::create_mirror_view(ratio);
+    for (int s = 0; s < ns; ++s) ratio_h(s) = eps[s];
+    Kokkos::deep_copy(ratio, ratio_h);
+    fill_well_mixed(grid, gas, W, ratio, floor);
+  };
+}
+
+void DiscSimulation::declare(core::DeckSchema& schema) {
+  mesh::GridSpec::declare(schema);
+  mesh::Boundaries::declare(schema);
+  GasDisc::declare(schema);
+  DustSettings::declare(schema);
+  DriverSettings::declare(schema);
+}
+
+DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units,
+                               const InitialDust& initial_dust)
+    : units_(units),
+      grid_(std::make_unique<mesh::Grid>(mesh::GridSpec::from_deck(deck), comm)),
+      gas_(std::make_unique<GasDisc>(deck, *grid_, units)) {
+  dust_ = std::make_unique<DustDynamics>(*grid_, DustSettings::from_deck(deck, units, gas_->config().GM));
+  dust_->set_gas(gas_->fields());
+  initial_dust(*grid_, gas_->fields(), dust_->W);
+  dust_->initialise_from_primitives();
+  driver_ = std::make_unique<DiscDriver>(*dust_, *gas_, DriverSettings::from_deck(deck));
+}
+
+void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
+  mesh::describe_grid(out, *grid_);
+  gas_->write_snapshot(out);
+  const auto& u = units_;
+  const auto& W = dust_->W;
+  const auto ts = dust_->stopping_times();
+  const int ns = dust_->species();
+  for (int s = 0; s < ns; ++s) {
+    const std::string n = std::to_string(s);
+    out.cell_field("dust_rho_" + n, mesh::active_cells(*grid_, W, s, kRho).data(), {"code density", u.density()});
+    out.cell_field("dust_vR_" + n, mesh::active_cells(*grid_, W, s, kVR).data(), {"code velocity", u.velocity()});
+    out.cell_field("dust_vphi_" + n, mesh::active_cells(*grid_, W, s, kVphi).data(), {"code velocity", u.velocity()});
+    out.cell_field("dust_vZ_" + n, mesh::active_cells(*grid_, W, s, kVZ).data(), {"code velocity", u.velocity()});
+    auto ts_s = Kokkos::subview(ts, Kokkos::ALL, Kokkos::ALL, s);
+    RealView2 ts2("disc::ts_species", grid_->nr_total(), grid_->nt_total());
+    Kokkos::deep_copy(ts2, ts_s);
+    out.cell_field("dust_ts_" + n, mesh::active_cells(*grid_, ts2).data(), {"code time", u.time});
+  }
+  RealView2 vK("disc::v_kepler", grid_->nr_total(), grid_->nt_total());
+  auto Rc = grid_->Rc;
+  auto Zc = grid_->Zc;
+  const Real GM = gas_->config().GM;
+  par_for(
+      "disc::v_kepler", 0, grid_->nr_total(), 0, grid_->nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        const Real r2 = Rc(i) * Rc(i) + Zc(i, j) * Zc(i, j);
+        vK(i, j) = math::sqrt(GM * Rc(i) * Rc(i) / (r2 * math::sqrt(r2)));
+      });
+  out.cell_field("v_K", mesh::active_cells(*grid_, vK).data(), {"code velocity", u.velocity()});
+  std::vector<double> sizes_cm;
+  for (double a : dust_->settings().sizes) sizes_cm.push_back(a * u.length);
+  out.array("dust_sizes", io::Block::whole({hsize_t(ns)}), sizes_cm.data(), {"cm", 1.0});
+  const double gm = GM;
+  out.array("GM", io::Block::whole({1}), &gm,
+            {"code length^3 / code time^2", u.length * u.length * u.length / (u.time * u.time)});
+}
+
+void DiscSimulation::save_state(io::H5File& file) const {
+  mesh::write_state(file, "/state/dust_Q", *grid_, dust_->Q);
+  mesh::write_state(file, "/state/dust_W", *grid_, dust_->W);
+  gas_->save_state(file);
+  driver_->save_state(file);
+}
+
+void DiscSimulation::load_state(const io::H5File& file) {
+  mesh::read_state(file, "/state/dust_Q", *grid_, dust_->Q);
+  mesh::read_state(file, "/state/dust_W", *grid_, dust_->W);
+  gas_->load_state(file);
+  dust_->set_gas(gas_->fields());
+  driver_->load_state(file);
+}
+
+double DiscSimulation::min_dust_density() const {
+  auto Q = dust_->Q;
+  const int ns = dust_->species();
+  Real m = std::numeric_limits<Real>::max();
+  par_reduce(
+      "disc::dust_rho_min", grid_->i_begin(), grid_->i_end(), grid_->j_begin(), grid_->j_end(),
+      KOKKOS_LAMBDA(int i, int j, Real& acc) {
+        for (int s = 0; s < ns; ++s) acc = math::min(acc, Q(i, j, s, kRho));
+      },
+      Kokkos::Min<Real>(m));
+  return grid_->comm().min(m);
+}
+
+std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
+  std::vector<io::Diagnostic> d;
+  for (int s = 0; s < dust_->species(); ++s) d.push_back({"dust_mass_" + std::to_string(s), dust_->mass(s)});
+  d.push_back({"dust_rho_min", min_dust_density()});
+  d.push_back({"gas_mass", gas_->mass()});
+  return d;
+}
+
+std::optional<io::NonFinite> DiscSimulation::find_non_finite() const {
+  auto Q = dust_->Q;
+  const int ib = grid_->i_begin(), jb = grid_->j_begin(), nt = grid_->nt, ns = dust_->species();
+  int first = INT_MAX;
+  par_reduce(
+      "disc::dust_non_finite", ib, grid_->i_end(), jb, grid_->j_end(),
+      KOKKOS_LAMBDA(int i, int j, int& f) {
+        for (int s = 0; s < ns; ++s)
+          for (int k = 0; k < kDustVars; ++k)
+            if (!math::isfinite(Q(i, j, s, k))) f = math::min(f, (i - ib) * nt + (j - jb));
+      },
+      Kokkos::Min<int>(first));
+  if (first != INT_MAX) {
+    const int i = first / nt, j = first % nt;
+    return io::NonFinite{"dust Q", log::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
+                                               grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
+  }
+  return gas_->find_non_finite();
+}
+
+}  // namespace mote::disc
