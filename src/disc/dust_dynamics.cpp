@@ -71,6 +71,26 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
   flux_Z_ = View4("dust::flux_Z", NI, NJ + 1, ns_, kDustVars);
   gas_ = GasFields(NI, NJ);
   gas_D_ = RealView2("dust::gas_D", NI, NJ);
+  inv_rho_g_ = RealView2("dust::inv_rho_g", NI, NJ);
+  Kokkos::deep_copy(inv_rho_g_, 1.0);
+  slope_R_ = RealView2("dust::slope_R", NI, 4);
+  slope_Z_ = RealView2("dust::slope_Z", NJ, 4);
+  {
+    auto sR = slope_R_, sZ = slope_Z_;
+    auto Rc = grid.Rc, Re = grid.Re, tc = grid.tan_tc, te = grid.tan_te;
+    par_for("disc::dust_slope_geometry_R", 1, NI - 1, KOKKOS_LAMBDA(int i) {
+      sR(i, 0) = 1.0 / (Rc(i + 1) - Rc(i));
+      sR(i, 1) = 1.0 / (Rc(i) - Rc(i - 1));
+      sR(i, 2) = (Rc(i + 1) - Rc(i)) / (Re(i + 1) - Rc(i));
+      sR(i, 3) = (Rc(i) - Rc(i - 1)) / (Rc(i) - Re(i));
+    });
+    par_for("disc::dust_slope_geometry_Z", 1, NJ - 1, KOKKOS_LAMBDA(int j) {
+      sZ(j, 0) = 1.0 / (tc(j + 1) - tc(j));
+      sZ(j, 1) = 1.0 / (tc(j) - tc(j - 1));
+      sZ(j, 2) = (tc(j + 1) - tc(j)) / (te(j + 1) - tc(j));
+      sZ(j, 3) = (tc(j) - tc(j - 1)) / (tc(j) - te(j));
+    });
+  }
   schmidt_ = RealView1("dust::schmidt", ns_);
   sizes_ = RealView1("dust::sizes", ns_);
   auto sc_h = Kokkos::create_mirror_view(schmidt_);
@@ -87,10 +107,12 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
 
 void DustDynamics::set_gas(const GasFields& gas) {
   gas_ = gas;
-  auto D = gas_D_;
+  auto D = gas_D_, inv_rho = inv_rho_g_;
   auto rho = gas.rho, nu = gas.nu;
-  par_for("disc::dust_diffusivity", 0, grid_.nr_total(), 0, grid_.nt_total(),
-          KOKKOS_LAMBDA(int i, int j) { D(i, j) = rho(i, j) * nu(i, j); });
+  par_for("disc::dust_diffusivity", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+    D(i, j) = rho(i, j) * nu(i, j);
+    inv_rho(i, j) = 1.0 / rho(i, j);
+  });
   mesh::update_diffusion_coefficients(grid_, gas_D_, diffusion_);
 }
 
@@ -142,7 +164,8 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   auto Rc = grid_.Rc, Re = grid_.Re, tan_tc = grid_.tan_tc, tan_te = grid_.tan_te;
   auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
   auto AR = grid_.AR, AZ = grid_.AZ;
-  auto rho_g = gas_.rho, gas_D = gas_D_;
+  auto inv_rho_g = inv_rho_g_, gas_D = gas_D_;
+  auto sR = slope_R_, sZ = slope_Z_;
   auto sc = schmidt_;
   const auto coef = diffusion_;
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
@@ -158,8 +181,8 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       ql[k] = w(i - 1, j, s, k);
       qr[k] = w(i, j, s, k);
       if (second_order) {
-        const Real sl = mignone_slope(w(i - 2, j, s, k), ql[k], qr[k], Rc(i - 2), Rc(i - 1), Rc(i), Re(i - 1), Re(i));
-        const Real sr = mignone_slope(ql[k], qr[k], w(i + 1, j, s, k), Rc(i - 1), Rc(i), Rc(i + 1), Re(i), Re(i + 1));
+        const Real sl = mignone_slope(w(i - 2, j, s, k), ql[k], qr[k], sR(i - 1, 0), sR(i - 1, 1), sR(i - 1, 2), sR(i - 1, 3));
+        const Real sr = mignone_slope(ql[k], qr[k], w(i + 1, j, s, k), sR(i, 0), sR(i, 1), sR(i, 2), sR(i, 3));
         ql[k] += sl * (Re(i) - Rc(i - 1));
         qr[k] += sr * (Re(i) - Rc(i));
       }
@@ -176,7 +199,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
       for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
       if (diffuse) {
-        const auto u = [&](int a, int c) { return w(a, c, s, kRho) / rho_g(a, c); };
+        const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
         const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
         const Real* up = fd > 0 ? ql : qr;
         f[kRho] += fd;
@@ -195,10 +218,8 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       ql[k] = w(i, j - 1, s, k);
       qr[k] = w(i, j, s, k);
       if (second_order) {
-        const Real sl = mignone_slope(w(i, j - 2, s, k), ql[k], qr[k], tan_tc(j - 2), tan_tc(j - 1), tan_tc(j),
-                                      tan_te(j - 1), tan_te(j));
-        const Real sr = mignone_slope(ql[k], qr[k], w(i, j + 1, s, k), tan_tc(j - 1), tan_tc(j), tan_tc(j + 1),
-                                      tan_te(j), tan_te(j + 1));
+        const Real sl = mignone_slope(w(i, j - 2, s, k), ql[k], qr[k], sZ(j - 1, 0), sZ(j - 1, 1), sZ(j - 1, 2), sZ(j - 1, 3));
+        const Real sr = mignone_slope(ql[k], qr[k], w(i, j + 1, s, k), sZ(j, 0), sZ(j, 1), sZ(j, 2), sZ(j, 3));
         ql[k] += sl * (tan_te(j) - tan_tc(j - 1));
         qr[k] += sr * (tan_te(j) - tan_tc(j));
       }
@@ -218,7 +239,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
       for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
       if (diffuse) {
-        const auto u = [&](int a, int c) { return w(a, c, s, kRho) / rho_g(a, c); };
+        const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
         Real fd;
         if (radial) {
           fd = coef.theta_flux(u, i, j) / sc(s);

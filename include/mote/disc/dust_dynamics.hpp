@@ -95,7 +95,9 @@ class DustDynamics {
   mesh::DiffusionCoefficients diffusion_;
   RealView1 schmidt_, sizes_;
   View<Real****> W_half_, flux_R_, flux_Z_;
-  RealView2 gas_D_;
+  RealView2 gas_D_, inv_rho_g_;
+  // Per-cell reconstruction geometry along R (i) and theta (j): inv_dp, inv_dm, c_F, c_B.
+  RealView2 slope_R_, slope_Z_;
 };
 
 }  // namespace mote::disc

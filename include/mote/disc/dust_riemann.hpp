@@ -10,14 +10,20 @@
 
 namespace mote::disc {
 
-/// Limited slope dq/dx in a cell at x_c with neighbours at x_m, x_p and faces
-/// x_fm, x_fp. c_F = (x_p - x_c)/(x_fp - x_c), c_B = (x_c - x_m)/(x_c - x_fm);
-/// on a uniform grid c_F = c_B = 2 and this is the harmonic (van Leer) slope.
-KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m, Real x_c, Real x_p, Real x_fm, Real x_fp) {
-  const Real dp = (q_p - q_c) / (x_p - x_c), dm = (q_c - q_m) / (x_c - x_m);
+/// Limited slope with the cell's geometric factors precomputed:
+/// inv_dp = 1/(x_p - x_c), inv_dm = 1/(x_c - x_m), c_F = (x_p - x_c)/(x_fp - x_c),
+/// c_B = (x_c - x_m)/(x_c - x_fm). On a uniform grid c_F = c_B = 2 and this is
+/// the harmonic (van Leer) slope.
+KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real inv_dp, Real inv_dm, Real cF, Real cB) {
+  const Real dp = (q_p - q_c) * inv_dp, dm = (q_c - q_m) * inv_dm;
   if (dp * dm <= 0) return 0.0;
-  const Real cF = (x_p - x_c) / (x_fp - x_c), cB = (x_c - x_m) / (x_c - x_fm);
   return dp * dm * (cF * dm + cB * dp) / (dm * dm + (cF + cB - 2.0) * dm * dp + dp * dp);
+}
+
+/// Limited slope dq/dx in a cell at x_c with neighbours at x_m, x_p and faces x_fm, x_fp.
+KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m, Real x_c, Real x_p, Real x_fm, Real x_fp) {
+  return mignone_slope(q_m, q_c, q_p, 1.0 / (x_p - x_c), 1.0 / (x_c - x_m), (x_p - x_c) / (x_fp - x_c),
+                       (x_c - x_m) / (x_c - x_fm));
 }
 
 /// Upwind mass flux factor of eq. 12: returns which side is upwind via `side`
@@ -25,6 +31,8 @@ KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m
 /// normal velocities of the two reconstructed states.
 KOKKOS_INLINE_FUNCTION int upwind_side(Real rho_l, Real vn_l, Real rho_r, Real vn_r) {
   if (vn_l < 0 && vn_r > 0) return 2;  // diverging flow: vacuum, no flux
+  if (vn_l > 0 && vn_r >= 0) return -1;  // both to the right: the Roe average is positive
+  if (vn_l <= 0 && vn_r < 0) return 1;   // both to the left: negative
   const Real sl = math::sqrt(rho_l), sr = math::sqrt(rho_r);
   const Real v_roe = (sl * vn_l + sr * vn_r) / (sl + sr);  // eq. 11
   if (v_roe > 0) return -1;
