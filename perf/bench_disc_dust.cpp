@@ -29,7 +29,7 @@ void BM_DustStep(benchmark::State& state) {
   disc::DustSettings st;
   for (int s = 0; s < ns; ++s) st.sizes.push_back(1e-5 * std::pow(1e4, double(s) / ns));
   st.schmidt.assign(ns, 1.0);
-  st.GM = 1.0;
+  st.star.GM = 1.0;
   disc::DustDynamics dust(grid, st);
   disc::GasFields gas(grid.nr_total(), grid.nt_total());
   auto Rc = grid.Rc;

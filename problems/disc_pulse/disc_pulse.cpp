@@ -136,7 +136,7 @@ void declare(core::DeckSchema& s) {
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto spec = mesh::GridSpec::from_deck(d);
-  auto dust = disc::DustSettings::from_deck(d, ctx.units, 0.0);
+  auto dust = disc::DustSettings::from_deck(d, ctx.units, disc::StellarGravity{0.0, false});
   if (dust.sizes.size() != 1) throw core::DeckError("disc_pulse evolves one dust species: give one value in dust.sizes");
   if (dust.drag || dust.gravity) throw core::DeckError("disc_pulse needs dust.drag = false and dust.gravity = false");
   Pulse p;

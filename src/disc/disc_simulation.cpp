@@ -58,7 +58,7 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
     : units_(units),
       grid_(std::make_unique<mesh::Grid>(mesh::GridSpec::from_deck(deck), comm)),
       gas_(std::make_unique<GasDisc>(deck, *grid_, units)) {
-  dust_ = std::make_unique<DustDynamics>(*grid_, DustSettings::from_deck(deck, units, gas_->config().GM));
+  dust_ = std::make_unique<DustDynamics>(*grid_, DustSettings::from_deck(deck, units, gas_->config().gravity()));
   dust_->set_gas(gas_->fields());
   initial_dust(*grid_, gas_->fields(), dust_->W);
   dust_->initialise_from_primitives();
@@ -86,17 +86,18 @@ void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
   RealView2 vK("disc::v_kepler", grid_->nr_total(), grid_->nt_total());
   auto Rc = grid_->Rc;
   auto Zc = grid_->Zc;
-  const Real GM = gas_->config().GM;
+  const StellarGravity star = gas_->config().gravity();
   par_for(
       "disc::v_kepler", 0, grid_->nr_total(), 0, grid_->nt_total(), KOKKOS_LAMBDA(int i, int j) {
-        const Real r2 = Rc(i) * Rc(i) + Zc(i, j) * Zc(i, j);
-        vK(i, j) = math::sqrt(GM * Rc(i) * Rc(i) / (r2 * math::sqrt(r2)));
+        Real gR, gZ;
+        star.acceleration(Rc(i), Zc(i, j), gR, gZ);
+        vK(i, j) = math::sqrt(math::max(-Rc(i) * gR, Real(0)));
       });
   out.cell_field("v_K", mesh::active_cells(*grid_, vK).data(), {"code velocity", u.velocity()});
   std::vector<double> sizes_cm;
   for (double a : dust_->settings().sizes) sizes_cm.push_back(a * u.length);
   out.array("dust_sizes", io::Block::whole({hsize_t(ns)}), sizes_cm.data(), {"cm", 1.0});
-  const double gm = GM;
+  const double gm = star.GM;
   out.array("GM", io::Block::whole({1}), &gm,
             {"code length^3 / code time^2", u.length * u.length * u.length / (u.time * u.time)});
 }

@@ -40,7 +40,7 @@ void DustSettings::declare(core::DeckSchema& s) {
       "Fluxes through the radial faces; false: every column evolves alone (vertical settling tests, RBO24 sec. 3.6).");
 }
 
-DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, double GM_code) {
+DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, const StellarGravity& star) {
   DustSettings st;
   for (double a : d.real_array("dust.sizes")) st.sizes.push_back(a / u.length);
   if (st.sizes.empty()) throw core::DeckError("dust.sizes: at least one species is needed");
@@ -56,7 +56,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSyste
   st.drag = d.boolean("dust.drag");
   st.gravity = d.boolean("dust.gravity");
   st.radial_fluxes = d.boolean("dust.radial_fluxes");
-  st.GM = GM_code;
+  st.star = star;
   st.boundaries = mesh::Boundaries::from_deck(d);
   return st;
 }
@@ -269,7 +269,8 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
   auto Rc = grid_.Rc;
   auto rho_g = gas_.rho, cs2 = gas_.cs2, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
   auto sizes = sizes_;
-  const Real dt = dt_stage, floor = settings_.floor, rho_m = settings_.rho_grain, GM = settings_.GM;
+  const Real dt = dt_stage, floor = settings_.floor, rho_m = settings_.rho_grain;
+  const StellarGravity star = settings_.star;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
   for_cells("disc::dust_stage", ng, ng + nr, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
@@ -282,12 +283,7 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
     const Real R = Rc(i), Z = Zc(i, j);
     const Real rs = w_source(i, j, s, kRho);
     Real aR = 0, aZ = 0;
-    if (gravity) {
-      const Real r2 = R * R + Z * Z;
-      const Real omega2 = GM / (r2 * math::sqrt(r2));
-      aR -= omega2 * R;
-      aZ -= omega2 * Z;
-    }
+    if (gravity) star.acceleration(R, Z, aR, aZ);
     if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
     // Conserved -> primitive (steps iii, vii). The transported specific momenta
     // are kept within the range of the 3 x 3 neighbourhood at the source stage:
@@ -356,7 +352,7 @@ double DustDynamics::max_dt() const {
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
   const bool gravity = settings_.gravity;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
-  const Real GM = settings_.GM;
+  const StellarGravity star = settings_.star;
   auto Zc = grid_.Zc;
   Real dt = std::numeric_limits<Real>::max();
   Kokkos::parallel_reduce(
@@ -370,12 +366,11 @@ double DustDynamics::max_dt() const {
         if (gravity) {
           // Explicit sources (eq. 6): the displacement a dt^2 stays below a cell
           // (not in eq. 18; it matters when the dust starts at rest or decoupled).
-          const Real R = Rc(i), Z = Zc(i, j), r2 = R * R + Z * Z;
-          const Real omega2 = GM / (r2 * math::sqrt(r2));
-          Real aR = -omega2 * R;
-          if (curvature) aR += math::square(W_(i, j, s, kVphi)) / R;
-          const Real aZ = math::fabs(omega2 * Z);
+          Real aR, aZ;
+          star.acceleration(Rc(i), Zc(i, j), aR, aZ);
+          if (curvature) aR += math::square(W_(i, j, s, kVphi)) / Rc(i);
           aR = math::fabs(aR);
+          aZ = math::fabs(aZ);
           if (radial && aR > 0) m = math::min(m, ca * math::sqrt(dR(i) / aR));
           if (aZ > 0) m = math::min(m, ca * math::sqrt(dZ / aZ));
         }

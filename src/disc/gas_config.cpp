@@ -19,6 +19,12 @@ void GasConfig::declare(core::DeckSchema& s) {
   s.table("star", "The central star.");
   if (!s.find_key("star", "mass"))
     s.real("star.mass").default_value(1.0).greater_than(0.0).unit("M_sun").doc("Stellar mass M_star.");
+  s.string("star.potential")
+      .default_value(std::string("point_mass"))
+      .one_of({"point_mass", "thin_disc"})
+      .doc(
+          "Stellar gravity on gas and dust. point_mass: -G M / r (RBO24); thin_disc: -G M / R + G M Z^2 / (2 R^3), "
+          "the thin-disc expansion of Takeuchi & Lin (2002) models (Gaussian isothermal columns).");
 
   s.table("gas",
           "Gas disc: 1D viscous evolution of Sigma (RBO24 eq. 26), hydrostatic 2D density (eq. 33-37), "
@@ -104,6 +110,7 @@ void GasConfig::derive(const units::UnitSystem& u, double h_ref) {
 GasConfig GasConfig::from_deck(const core::Deck& d, const units::UnitSystem& u) {
   GasConfig c;
   c.GM = u.gravitational_constant() * d.real("star.mass") * units::cgs::M_sun / u.mass;
+  c.thin_disc_gravity = d.string("star.potential") == "thin_disc";
   c.R_ref = d.real("gas.R_ref");
   c.T_ref = d.real("gas.T_ref");
   c.T_index = d.real("gas.T_index");

@@ -30,7 +30,7 @@ GasDisc::GasDisc(const GasConfig& config, const mesh::Grid& grid, const units::U
     throw core::DeckError("the gas disc needs grid.geometry = \"cylindrical\" (eq. 1-3 volumes for eq. 37)");
   if (grid.nr < 2) throw core::DeckError("the gas disc needs at least 2 radial cells per rank");
   j_mid_ = disc::midplane_index(grid);
-  gas_.GM = cfg_.GM;
+  gas_.gravity = cfg_.gravity();
   gas_.column_fraction = disc::column_fraction(grid);
   const GasConfig c = cfg_;
   set_surface_density([c](double R) {
@@ -97,7 +97,7 @@ void GasDisc::update_structure() {
     gas_temperature_profile(grid_, cfg_, gas_.T, gas_.cs2);
   }
   gas_viscosity(grid_, cfg_, j_mid_, gas_.cs2, gas_.nu, gas_.nu_mid);
-  gas_hydrostatic_density(grid_, cfg_.GM, gas_.column_fraction, cfg_.rho_floor, j_mid_, gas_.cs2, gas_.Sigma, gas_.rho);
+  gas_hydrostatic_density(grid_, cfg_.gravity(), gas_.column_fraction, cfg_.rho_floor, j_mid_, gas_.cs2, gas_.Sigma, gas_.rho);
   gas_velocities(grid_, halo_, scratch_, gas_);
 }
 

@@ -53,10 +53,11 @@ void gas_viscosity(const mesh::Grid& grid, const GasConfig& cfg, int j_mid, cons
       "disc::gas_viscosity_mid", 0, grid.nr_total(), KOKKOS_LAMBDA(int i) { nu_mid(i) = nu(i, j_mid); });
 }
 
-void gas_hydrostatic_density(const mesh::Grid& grid, Real GM, Real column_fraction, Real rho_floor, int j_ref,
+void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction, Real rho_floor, int j_ref,
                              const RealView2& cs2, const RealView1& Sigma, const RealView2& rho) {
-  auto Rc = grid.Rc, Re = grid.Re, tc = grid.tc;
-  auto V = grid.V;
+  auto Rc = grid.Rc, Re = grid.Re;
+  auto V = grid.V, Zc = grid.Zc;
+  const StellarGravity g = gravity;
   const int NJ = grid.nt_total(), jb = grid.j_begin(), je = grid.j_end();
   const Real f = column_fraction;
   // One thread per column; the scan of eq. 36 is sequential in j.
@@ -67,16 +68,16 @@ void gas_hydrostatic_density(const mesh::Grid& grid, Real GM, Real column_fracti
         Real P = 1.0;
         rho(i, j_ref) = P / cs2(i, j_ref);
         for (int j = j_ref + 1; j < NJ; ++j) {
-          const Real inv_r = math::cos(tc(j)) / R, inv_r_prev = math::cos(tc(j - 1)) / R;
+          const Real dPhi = g.potential(R, Zc(i, j)) - g.potential(R, Zc(i, j - 1));
           const Real mean_inv_cs2 = 0.5 * (1.0 / cs2(i, j) + 1.0 / cs2(i, j - 1));  // eq. 35
-          P *= math::exp(GM * mean_inv_cs2 * (inv_r - inv_r_prev));                 // eq. 34
+          P *= math::exp(-mean_inv_cs2 * dPhi);                                       // eq. 34
           rho(i, j) = P / cs2(i, j);
         }
         P = 1.0;
         for (int j = j_ref - 1; j >= 0; --j) {
-          const Real inv_r = math::cos(tc(j)) / R, inv_r_prev = math::cos(tc(j + 1)) / R;
+          const Real dPhi = g.potential(R, Zc(i, j)) - g.potential(R, Zc(i, j + 1));
           const Real mean_inv_cs2 = 0.5 * (1.0 / cs2(i, j) + 1.0 / cs2(i, j + 1));
-          P *= math::exp(GM * mean_inv_cs2 * (inv_r - inv_r_prev));
+          P *= math::exp(-mean_inv_cs2 * dPhi);
           rho(i, j) = P / cs2(i, j);
         }
         // Normalisation to the surface density (eq. 37), over the active rows.

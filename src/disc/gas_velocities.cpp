@@ -85,7 +85,7 @@ void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityS
   auto Rc = grid.Rc, tc = grid.tc, tan_tc = grid.tan_tc;
   auto rho = gas.rho, cs2 = gas.cs2, nu = gas.nu, vphi = gas.vphi, vR = gas.vR, vZ = gas.vZ;
   auto lnP = s.a, b = s.b, c = s.c, d = s.d, e = s.e;
-  const Real GM = gas.GM;
+  const StellarGravity gravity = gas.gravity;
 
   par_for(
       "disc::gas_log_pressure", 0, ni, 0, nj,
@@ -97,7 +97,9 @@ void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityS
         const Real cs = math::cos(tc(j)), sn = math::sin(tc(j)), inv_cos = 1.0 / cs;
         const Real R = Rc(i), r = R * inv_cos;
         const Real dlnP_dr = d_dr(lnP, Rc, inv_cos, i, j), dlnP_dZ = d_dZ(lnP, R, tan_tc, i, j);
-        const Real v2 = GM * cs * cs / r + r * cs2(i, j) * (dlnP_dr - sn * dlnP_dZ);
+        Real gR, gZ;
+        gravity.acceleration(R, R * tan_tc(j), gR, gZ);
+        const Real v2 = -R * gR + r * cs2(i, j) * (dlnP_dr - sn * dlnP_dZ);
         vphi(i, j) = math::sqrt(math::max(v2, Real(0)));
       });
   extrapolate_edges(vphi, rho, false, Rc, tan_tc);

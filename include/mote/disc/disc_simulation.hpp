@@ -7,7 +7,7 @@
 //
 // Snapshots: the grid, the gas fields (GasDisc::write_snapshot), per species s
 // dust_rho_<s>, dust_vR_<s>, dust_vphi_<s>, dust_vZ_<s>, dust_ts_<s> (Epstein
-// stopping time, eq. 14), the cell field v_K = (G M R^2 / r^3)^1/2 (circular
+// stopping time, eq. 14), the cell field v_K = (-R g_R)^1/2 (circular
 // speed of a test particle at (R, Z)) and /data/dust_sizes (cm), /data/GM.
 // Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping.
 // History: dust_mass_<s>, dust_rho_min, gas_mass.

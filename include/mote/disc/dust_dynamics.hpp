@@ -50,12 +50,12 @@ struct DustSettings {
   double cfl_advection = 0.4, cfl_diffusion = 0.2;
   bool diffusion = true, drag = true, gravity = true;
   bool radial_fluxes = true;     // false: no flux through radial faces (columns independent)
-  double GM = 1.0;               // stellar G M in code units
+  StellarGravity star;           // stellar gravity (the gas structure's)
   mesh::Boundaries boundaries;
 
   /// Deck table [dust] (sizes in cm, rho_grain in g/cm^3, converted with the unit system).
   static void declare(core::DeckSchema& schema);
-  static DustSettings from_deck(const core::Deck& deck, const units::UnitSystem& units, double GM_code);
+  static DustSettings from_deck(const core::Deck& deck, const units::UnitSystem& units, const StellarGravity& star);
 };
 
 class DustDynamics {

@@ -12,6 +12,7 @@
 
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
+#include "mote/disc/stellar_gravity.hpp"
 
 namespace mote::disc {
 
@@ -31,7 +32,8 @@ enum class GasBoundary { Closed, ZeroTorque, Extrapolate, User };
 
 struct GasConfig {
   // Star.
-  double GM = 1.0;  // G M_star, code units
+  double GM = 1.0;                 // G M_star, code units
+  bool thin_disc_gravity = false;  // star.potential = "thin_disc"
   // Temperature (vertically isothermal power law).
   double R_ref = 1.0;     // code length
   double T_ref = 100.0;   // K at R_ref
@@ -53,6 +55,8 @@ struct GasConfig {
   double cfl = 0.5;             // fraction of the explicit (positivity) limit of eq. 26
   double Sigma_floor = 1e-100;  // code surface density
   double rho_floor = 1e-100;    // code density
+
+  StellarGravity gravity() const { return {GM, thin_disc_gravity}; }
 
   /// Tables [gas] and [star] (star.mass in M_sun).
   static void declare(core::DeckSchema& schema);

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "mote/core/kokkos_types.hpp"
+#include "mote/disc/stellar_gravity.hpp"
 
 namespace mote::disc {
 
@@ -26,7 +27,7 @@ struct GasFields {
   RealView2 T;               // temperature [K]
   RealView2 nu;              // kinematic viscosity
   RealView2 vR, vphi, vZ;    // cylindrical velocity components
-  Real GM = 0;               // G M_star, code units
+  StellarGravity gravity;    // of the star, as the gas structure uses it
   Real column_fraction = 1;  // fraction of Sigma held by the grid's theta range
 
   GasFields() = default;

@@ -2,7 +2,8 @@
 //  * vertically isothermal temperature T(R) and cs^2 = k_B T / (mu m_H);
 //  * kinematic viscosity nu = alpha cs^2 / Omega_K(R) or nu_0 (R / R_ref)^n (sec. 3.4);
 //  * hydrostatic density by the multiplicative scan of eq. 33-37:
-//      P_j / P_{j-1} = exp[G M <1/cs^2> (1/r_j - 1/r_{j-1})],  <1/cs^2> = (1/cs^2_j + 1/cs^2_{j-1}) / 2,
+//      P_j / P_{j-1} = exp[-<1/cs^2> (Phi_j - Phi_{j-1})],  <1/cs^2> = (1/cs^2_j + 1/cs^2_{j-1}) / 2,
+//    with Phi = -G M / r (eq. 34) or its thin-disc expansion (stellar_gravity.hpp),
 //      rho_j = P_j / cs^2_j, normalised so that sum_j rho_j V_j = f Sigma (R dR)   (eq. 37),
 //    positive by construction (a product of exponentials; a floor guards underflow).
 //    The scan runs outwards from the cell nearest the mid-plane in both
@@ -31,7 +32,7 @@ void gas_sound_speed_from_temperature(const GasConfig& cfg, const RealView2& T, 
 void gas_viscosity(const mesh::Grid& grid, const GasConfig& cfg, int j_mid, const RealView2& cs2, const RealView2& nu,
                    const RealView1& nu_mid);
 /// Hydrostatic density (eq. 33-37) on every cell from Sigma (ghosts included) and cs2.
-void gas_hydrostatic_density(const mesh::Grid& grid, Real GM, Real column_fraction, Real rho_floor, int j_ref,
+void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction, Real rho_floor, int j_ref,
                              const RealView2& cs2, const RealView1& Sigma, const RealView2& rho);
 
 }  // namespace mote::disc
