@@ -1,6 +1,6 @@
 // Coagulation benchmarks (RBO24 sec. 5; issue 4): kernel-pair evaluations per
 // second of the Smoluchowski right-hand side (one team per cell, pairs in the
-// inner ranges), wall time of one coagulation call (adaptive BS32 sub-steps)
+// inner ranges; both product splits), wall time of one coagulation call (adaptive BS32 sub-steps)
 // for a grid of cells with 100 species, and the single-cell E3 run
 // (200 species, 20 au, to 1e5 yr).
 //   bin/perf/bench_coagulation --benchmark_out=coag.json --benchmark_out_format=json
@@ -63,6 +63,7 @@ struct Setup {
 void BM_CoagulationRates(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0)), species = static_cast<int>(state.range(1));
   Setup setup(cells, species, 1.0);
+  setup.s.product_split = state.range(2) ? "quadratic" : "two-bin";
   coag::Coagulation solver(setup.grid, setup.s, cells);
   const auto kernel = coag::make_kernel(setup.s, setup.grid, setup.gas);
   mote::RealView2 dydt("dydt", cells, species);
@@ -126,6 +127,13 @@ void BM_CoagulationSteadyStateE3(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_CoagulationRates)->Args({1, 100})->Args({1, 200})->Args({256, 100})->Unit(benchmark::kMicrosecond);
+// Arguments: cells, species, product split (0 two-bin, 1 quadratic).
+BENCHMARK(BM_CoagulationRates)
+    ->Args({1, 100, 0})
+    ->Args({1, 200, 0})
+    ->Args({256, 100, 0})
+    ->Args({1, 200, 1})
+    ->Args({256, 100, 1})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CoagulationStep)->Args({32, 100})->Args({150, 100})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_CoagulationSteadyStateE3)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -17,7 +17,7 @@ namespace detail {
 using TeamPolicy = Kokkos::TeamPolicy<ExecSpace>;
 using Member = TeamPolicy::member_type;
 using Scratch = Kokkos::View<Real*, ExecSpace::scratch_memory_space, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
-constexpr int kScratchArrays = 9;
+constexpr int kBs32Arrays = 7;  // y and the six Bs32Work arrays
 
 template <class Kernel>
 bool uses_fragmentation(const Kernel& kernel) {
@@ -46,7 +46,8 @@ AnyKernel make_kernel(const CoagulationSettings& s, const MassGrid& grid, const 
 Coagulation::Coagulation(const MassGrid& grid, const CoagulationSettings& settings, int cells)
     : grid_(grid), settings_(settings), cells_(cells) {
   batch_ = std::max(1, std::min(cells_, settings_.cells_per_batch));
-  tables_ = build_collision_tables(grid_, settings_.chi_im, settings_.fragment_slope);
+  tables_ = build_collision_tables(grid_, settings_.chi_im, settings_.fragment_slope,
+                                   product_split_from_name(settings_.product_split));
   k_coag_ = PairCoefficients("coagulation::k_coag", batch_, tables_.pairs);
   k_frag_ = PairCoefficients("coagulation::k_frag", batch_, tables_.pairs);
   next_substep_ = RealView1("coagulation::next_substep", cells_);
@@ -80,7 +81,7 @@ void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
 template <class Kernel>
 CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, const Kernel& kernel) {
   const int n = tables_.species;
-  const size_t bytes = detail::kScratchArrays * detail::Scratch::shmem_size(n);
+  const size_t bytes = (detail::kBs32Arrays + CellRates::scratch_per_species) * detail::Scratch::shmem_size(n);
   Bs32Options base;
   base.rel_tol = settings_.rel_tol;
   base.max_steps = settings_.max_substeps;
@@ -97,7 +98,7 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
     Kokkos::parallel_for("coagulation::integrate", policy, KOKKOS_LAMBDA(const detail::Member& team) {
       const int lc = team.league_rank(), c = first + lc;
       const auto& scratch = team.team_scratch(0);
-      const detail::Scratch y(scratch, n), nd(scratch, n), bucket(scratch, n);
+      const detail::Scratch y(scratch, n), nd(scratch, n), bucket(scratch, n), theta(scratch, 2 * n);
       const Bs32Work<detail::Scratch> work{detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n),
                                            detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n)};
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
@@ -110,7 +111,7 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
         o.abs_tol = abs_factor * total;
         o.h_init = next(c);
         const auto rhs = [&](const detail::Member& tm, const detail::Scratch& yin, const detail::Scratch& out) {
-          rates(tm, lc, yin, out, nd, bucket);
+          rates(tm, lc, yin, out, nd, bucket, theta);
         };
         r = bs32_integrate(team, n, y, dt, o, work, rhs);
         Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { density(c, k) = y(k); });
@@ -144,7 +145,7 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
 template <class Kernel>
 void Coagulation::rates_with(const RealView2& density, const Kernel& kernel, const RealView2& dydt) {
   const int n = tables_.species;
-  const size_t bytes = 4 * detail::Scratch::shmem_size(n);
+  const size_t bytes = (2 + CellRates::scratch_per_species) * detail::Scratch::shmem_size(n);
   for (int first = 0; first < cells_; first += batch_) {
     const int count = std::min(batch_, cells_ - first);
     evaluate_pairs(first, count, kernel);
@@ -153,10 +154,10 @@ void Coagulation::rates_with(const RealView2& density, const Kernel& kernel, con
     Kokkos::parallel_for("coagulation::rates", policy, KOKKOS_LAMBDA(const detail::Member& team) {
       const int lc = team.league_rank(), c = first + lc;
       const auto& scratch = team.team_scratch(0);
-      const detail::Scratch y(scratch, n), out(scratch, n), nd(scratch, n), bucket(scratch, n);
+      const detail::Scratch y(scratch, n), out(scratch, n), nd(scratch, n), bucket(scratch, n), theta(scratch, 2 * n);
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
       team.team_barrier();
-      rates(team, lc, y, out, nd, bucket);
+      rates(team, lc, y, out, nd, bucket, theta);
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { dydt(c, k) = out(k); });
     });
     debug_fence("coagulation::rates");

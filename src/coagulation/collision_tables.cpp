@@ -1,10 +1,13 @@
-// Collision-product gather tables (RBO24 eq. 61-68; Rafikov et al. 2020).
+// Collision-product gather tables (RBO24 eq. 61-68; Rafikov et al. 2020;
+// product splits of product_split.hpp).
 #include "mote/coagulation/collision_tables.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "mote/coagulation/fragmentation.hpp"
+#include "mote/coagulation/product_split.hpp"
 
 namespace mote::coagulation {
 
@@ -13,6 +16,7 @@ namespace {
 struct Entry {
   int target, pair;
   double weight;
+  int limiter = -1;
 };
 
 GatherList to_gather_list(std::vector<Entry> entries, int targets, const char* name) {
@@ -22,19 +26,24 @@ GatherList to_gather_list(std::vector<Entry> entries, int targets, const char* n
   g.ptr = IntView1(base + "_ptr", targets + 1);
   g.pair = IntView1(base + "_pair", entries.size());
   g.weight = RealView1(base + "_weight", entries.size());
+  const bool limited = !entries.empty() && entries.front().limiter >= 0;
+  if (limited) g.limiter = IntView1(base + "_limiter", entries.size());
   auto ptr = Kokkos::create_mirror_view(g.ptr);
   auto pair = Kokkos::create_mirror_view(g.pair);
   auto weight = Kokkos::create_mirror_view(g.weight);
+  auto limiter = Kokkos::create_mirror_view(g.limiter);
   for (int t = 0; t <= targets; ++t) ptr(t) = 0;
   for (size_t e = 0; e < entries.size(); ++e) {
     ptr(entries[e].target + 1) += 1;
     pair(e) = entries[e].pair;
     weight(e) = entries[e].weight;
+    if (limited) limiter(e) = entries[e].limiter;
   }
   for (int t = 0; t < targets; ++t) ptr(t + 1) += ptr(t);
   Kokkos::deep_copy(g.ptr, ptr);
   Kokkos::deep_copy(g.pair, pair);
   Kokkos::deep_copy(g.weight, weight);
+  if (limited) Kokkos::deep_copy(g.limiter, limiter);
   return g;
 }
 
@@ -43,17 +52,19 @@ int lower_centre(const std::vector<double>& mc, double m) {
   return static_cast<int>(std::upper_bound(mc.begin(), mc.end(), m) - mc.begin()) - 1;
 }
 
-/// Adds the entries of a product of mass `m` split between the centres either
-/// side of it, mass fractions eps and 1 - eps (RBO24 eq. 63-65), all of it to
-/// the first/last bin outside the grid. When a share lands in the bin of the
+/// Adds the entries of a product of mass `m` split between the centres
+/// either side of it (product_split.hpp; RBO24 eq. 63-65), all of it to the
+/// first/last bin outside the grid. When a share lands in the bin of the
 /// pair's larger grain i, that entry holds its share net of the mass the
 /// collision removes from bin i (`net` = m - removed, given by the caller
 /// without cancellation) and `self` is set, so the loss term skips it: the
 /// weights are then O(m_j) for m_j << m_i and the round-off is relative to the
 /// mass actually moved. `near_l` / `near_u` are m - m_l and m_u - m, also
-/// computed without cancellation by the caller.
-void split(std::vector<Entry>& out, const std::vector<double>& mc, int pair, int i, double m, double net,
-           double near_l, double near_u, int l, bool& self) {
+/// computed without cancellation by the caller. The quadratic split adds its
+/// correction entries to `corr`.
+void split(std::vector<Entry>& out, std::vector<Entry>& corr, const std::vector<double>& mc,
+           const std::vector<double>& me, ProductSplit scheme, int pair, int i, double m, double net, double near_l,
+           double near_u, int l, bool& self) {
   const int n = static_cast<int>(mc.size());
   auto add = [&](int target, double w) {
     if (target == i) {  // only whole-mass entries reach here with target == i
@@ -65,27 +76,38 @@ void split(std::vector<Entry>& out, const std::vector<double>& mc, int pair, int
   if (l < 0) return add(0, m);
   if (l >= n - 1) return add(n - 1, m);
   const int u = l + 1;
-  const double width = mc[u] - mc[l];
+  const TwoBinWeights w = two_bin_weights(scheme == ProductSplit::quadratic, m, mc[l], mc[u], near_l, near_u);
   if (u == i) {  // remnant just below the target's centre: m_u - m is small
-    const double w_l = m * near_u / width;
     self = true;
-    out.push_back({l, pair, w_l});
-    out.push_back({u, pair, net - w_l});
+    out.push_back({l, pair, w.lower});
+    out.push_back({u, pair, net - w.lower});
   } else if (l == i) {  // coagulation product just above the larger grain's centre
-    const double w_u = m * near_l / width;
     self = true;
-    if (net - w_u != 0) out.push_back({l, pair, net - w_u});
-    out.push_back({u, pair, w_u});
+    if (net - w.upper != 0) out.push_back({l, pair, net - w.upper});
+    out.push_back({u, pair, w.upper});
   } else {
-    const double w_l = m * near_u / width;
-    add(l, w_l);
-    add(u, m - w_l);
+    add(l, w.lower);
+    add(u, m - w.lower);
   }
+  if (scheme != ProductSplit::quadratic || n < 3 || near_l == 0 || near_u == 0) return;
+  // Third centre beside the nearer of m_l, m_u in log m (m < edge u), inside the grid.
+  const bool below = u == n - 1 || (l > 0 && m < me[u]);
+  const QuadraticCorrection c = quadratic_correction(mc.data(), l, below, near_l, near_u);
+  const int lim = split_limiter_index(c.near, !below);
+  corr.push_back({c.third, pair, c.to_third, lim});
+  corr.push_back({l, pair, c.to_lower, lim});
+  corr.push_back({u, pair, c.to_upper, lim});
 }
 
 }  // namespace
 
-CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real eta) {
+ProductSplit product_split_from_name(const std::string& name) {
+  if (name == "two-bin") return ProductSplit::two_bin;
+  if (name == "quadratic") return ProductSplit::quadratic;
+  throw std::invalid_argument("coagulation.product_split must be \"two-bin\" or \"quadratic\" (got \"" + name + "\")");
+}
+
+CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real eta, ProductSplit scheme) {
   const int n = grid.size();
   const auto& mc = grid.masses();
   const auto& me = grid.edges();
@@ -97,7 +119,7 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
   t.pair_j = IntView1("coagulation::pair_j", t.pairs);
   auto pi = Kokkos::create_mirror_view(t.pair_i);
   auto pj = Kokkos::create_mirror_view(t.pair_j);
-  std::vector<Entry> coag, rem, frag;
+  std::vector<Entry> coag, rem, frag, coag_corr, rem_corr;
   coag.reserve(2 * t.pairs);
   rem.reserve(2 * t.pairs);
   frag.reserve(t.pairs);
@@ -118,14 +140,14 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
         const int l = m_tot >= mc[n - 1] ? n - 1 : lower_centre(mc, m_tot);
         const double near_l = l == i ? m_small : m_tot - mc[std::min(l, n - 1)];
         const double near_u = l + 1 < n ? mc[l + 1] - m_tot : 0.0;
-        split(coag, mc, p, i, m_tot, net_coag, near_l, near_u, l, self_coag);
+        split(coag, coag_corr, mc, me, scheme, p, i, m_tot, net_coag, near_l, near_u, l, self_coag);
       }
       const double m_rem = remnant_mass(mc[i], mc[j], chi_im);
       if (m_rem > 0) {
         const int l = m_rem <= mc[0] ? -1 : lower_centre(mc, m_rem);
         const double near_u = l + 1 == i ? chi_im * m_small : (l + 1 < n && l >= 0 ? mc[l + 1] - m_rem : 0.0);
         const double near_l = l >= 0 ? m_rem - mc[l] : 0.0;
-        split(rem, mc, p, i, m_rem, net_rem, near_l, near_u, l, self_rem);
+        split(rem, rem_corr, mc, me, scheme, p, i, m_rem, net_rem, near_l, near_u, l, self_rem);
       }
       const double m_frag = m_rem > 0 ? (1.0 + chi_im) * m_small : m_tot;  // m_tot - m_rem without cancellation
       const int l = std::min(n - 1, static_cast<int>(std::upper_bound(me.begin() + 1, me.end(), m_frag) - (me.begin() + 1)));
@@ -138,6 +160,9 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
   t.coag = to_gather_list(std::move(coag), n, "coag");
   t.remnant = to_gather_list(std::move(rem), n, "remnant");
   t.fragment = to_gather_list(std::move(frag), n, "fragment");
+  t.has_correction = scheme == ProductSplit::quadratic && n >= 3;
+  t.coag_correction = to_gather_list(std::move(coag_corr), n, "coag_correction");
+  t.remnant_correction = to_gather_list(std::move(rem_corr), n, "remnant_correction");
 
   t.fragment_share = RealView2("coagulation::fragment_share", n, n);
   auto share = Kokkos::create_mirror_view(t.fragment_share);

@@ -15,6 +15,11 @@ void declare(core::DeckSchema& s) {
   s.real("coagulation.v_frag").default_value(100.0).greater_than(0.0).unit("cm/s").doc("Fragmentation velocity v_frag (RBO24 eq. 62).");
   s.real("coagulation.fragment_slope").default_value(11.0 / 6.0).greater_than(0.0).doc("eta of the fragment distribution n(m) ~ m^-eta (RBO24 eq. 66).");
   s.real("coagulation.chi_im").default_value(1.0).greater_than(0.0).doc("Mass excavated from the target in units of the impactor mass (RBO24 eq. 68).");
+  s.string("coagulation.product_split")
+      .default_value(std::string("two-bin"))
+      .one_of({"two-bin", "quadratic"})
+      .doc("Sharing of products and remnants between the centres around them: two-bin mass fractions (RBO24 eq. 63-65) or "
+           "the number-conserving split with a limited second-moment correction (docs/coagulation.md).");
   s.real("coagulation.rel_tol").default_value(1e-2).greater_than(0.0).less_than(1.0).doc("Relative tolerance of the Bogacki-Shampine 3(2) sub-steps.");
   s.real("coagulation.abs_tol").default_value(1e-10).greater_than(0.0).doc("Absolute tolerance, in units of the cell's total dust density.");
   s.integer("coagulation.max_substeps").default_value(1000000LL).min(1).doc("Largest number of sub-steps per cell and call before the call fails.");
@@ -36,6 +41,7 @@ CoagulationSettings settings_from_deck(const core::Deck& d) {
   s.v_frag = d.real("coagulation.v_frag");
   s.fragment_slope = d.real("coagulation.fragment_slope");
   s.chi_im = d.real("coagulation.chi_im");
+  s.product_split = d.string("coagulation.product_split");
   s.rel_tol = d.real("coagulation.rel_tol");
   s.abs_tol = d.real("coagulation.abs_tol");
   s.max_substeps = static_cast<int>(d.integer("coagulation.max_substeps"));

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "mote/coagulation/coagulation.hpp"
 #include "mote/core/units.hpp"
@@ -44,8 +45,11 @@ coag::GasCells disc_cells(int cells, Real sigma_gas) {
 
 }  // namespace
 
-TEST(CoagulationRates, PhysicalKernelConservesMassPairByPair) {
+class CoagulationRatesSplit : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CoagulationRatesSplit, PhysicalKernelConservesMassPairByPair) {
   coag::CoagulationSettings s;
+  s.product_split = GetParam();
   s.species = 60;
   s.a_min = 1e-5;
   s.a_max = 10.0;
@@ -73,9 +77,14 @@ TEST(CoagulationRates, PhysicalKernelConservesMassPairByPair) {
     }
     EXPECT_GT(gross, 0.0);
     EXPECT_LT(std::fabs(sum), 1e-13 * gross) << "cell " << c;
-    std::printf("cell %d: sum of rates %.3e, sum of |rates| %.3e\n", c, sum, gross);
+    std::printf("%s split, cell %d: sum of rates %.3e, sum of |rates| %.3e\n", GetParam(), c, sum, gross);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Splits, CoagulationRatesSplit, ::testing::Values("two-bin", "quadratic"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           return std::string(info.param) == "two-bin" ? std::string("two_bin") : std::string(info.param);
+                         });
 
 TEST(CoagulationRates, TablesDeliverTheCollidingMass) {
   const auto grid = coag::MassGrid::from_masses(1.0, 1e6, 43);
@@ -115,6 +124,101 @@ TEST(CoagulationRates, TablesDeliverTheCollidingMass) {
       EXPECT_NEAR(sum, 1.0, 1e-14);
     }
   }
+}
+
+TEST(CoagulationRates, QuadraticSplitDeliversNumberMassAndSecondMoment) {
+  // Base (Kovetz & Olund) plus full correction (theta = 1) = quadratic Lagrange
+  // weights: number 1, mass x and x^2 of every product and remnant; the
+  // correction alone carries zero mass and zero number; only its third bin is negative.
+  const auto grid = coag::MassGrid::from_masses(1.0, 1e6, 43);
+  const int n = grid.size();
+  const auto t = coag::build_collision_tables(grid, 0.5, 11.0 / 6.0, coag::ProductSplit::quadratic);
+  ASSERT_TRUE(t.has_correction);
+  auto pi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.pair_i);
+  auto pj = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.pair_j);
+  auto self = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.self_target);
+  struct Moments {
+    std::vector<double> number, mass, second, corr_number, corr_mass, corr_scale;
+  };
+  auto moments = [&](const coag::GatherList& base, const coag::GatherList& corr, int bit) {
+    Moments mo{std::vector<double>(t.pairs, 0.0), std::vector<double>(t.pairs, 0.0), std::vector<double>(t.pairs, 0.0),
+               std::vector<double>(t.pairs, 0.0), std::vector<double>(t.pairs, 0.0), std::vector<double>(t.pairs, 0.0)};
+    auto add = [&](const coag::GatherList& g, bool correction) {
+      auto ptr = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.ptr);
+      auto pair = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.pair);
+      auto w = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.weight);
+      for (int k = 0; k < n; ++k)
+        for (int e = ptr(k); e < ptr(k + 1); ++e) {
+          const int p = pair(e);
+          double wk = w(e);
+          if (!correction && (self(p) & bit) && k == pi(p)) wk += pi(p) == pj(p) ? 2 * grid.mass(k) : grid.mass(k);
+          const double num = wk / grid.mass(k);
+          mo.number[p] += num;
+          mo.mass[p] += wk;
+          mo.second[p] += num * grid.mass(k) * grid.mass(k);
+          if (correction) {
+            mo.corr_number[p] += num;
+            mo.corr_mass[p] += wk;
+            mo.corr_scale[p] += std::fabs(wk);
+            const int lim = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.limiter)(e);
+            if (wk < 0) EXPECT_EQ(std::abs(k - lim / 2), 1) << "only the third bin, next to the limiter's bin, loses";
+          }
+        }
+    };
+    add(base, false);
+    add(corr, true);
+    return mo;
+  };
+  const auto co = moments(t.coag, t.coag_correction, 1);
+  const auto re = moments(t.remnant, t.remnant_correction, 2);
+  int corrected = 0;
+  for (int p = 0; p < t.pairs; ++p) {
+    const double mi = grid.mass(pi(p)), mj = grid.mass(pj(p));
+    const double x = mi + mj, r = coag::remnant_mass(mi, mj, 0.5);
+    if (x < grid.mass(n - 1)) {
+      EXPECT_NEAR(co.number[p], 1.0, 1e-12) << p;
+      EXPECT_NEAR(co.mass[p], x, 1e-13 * x) << p;
+      EXPECT_NEAR(co.second[p], x * x, 1e-11 * x * x) << p;
+    }
+    if (r > grid.mass(0)) {
+      EXPECT_NEAR(re.number[p], 1.0, 1e-12) << p;
+      EXPECT_NEAR(re.mass[p], r, 1e-13 * r) << p;
+      EXPECT_NEAR(re.second[p], r * r, 1e-11 * r * r) << p;
+    }
+    for (const auto* mo : {&co, &re}) {
+      EXPECT_LE(std::fabs(mo->corr_mass[p]), 1e-15 * mo->corr_scale[p]) << p;
+      EXPECT_LE(std::fabs(mo->corr_number[p] * x), 1e-13 * mo->corr_scale[p]) << p;
+      corrected += mo->corr_scale[p] > 0;
+    }
+  }
+  EXPECT_GT(corrected, t.pairs);
+}
+
+TEST(CoagulationRates, QuadraticSplitKeepsEmptyBinsNonNegative) {
+  // Populated bins 10..14 only: every empty bin gains or stays (the limiter
+  // switches the negative share off where the third bin is empty), and the
+  // rates conserve mass.
+  const auto grid = coag::MassGrid::from_masses(1.0, 1e4, 29);
+  coag::CoagulationSettings s;
+  s.kernel = "constant";
+  s.product_split = "quadratic";
+  coag::Coagulation solver(grid, s, 1);
+  mote::RealView2 rho("rho", 1, grid.size()), dydt("dydt", 1, grid.size());
+  auto h = Kokkos::create_mirror_view(rho);
+  for (int k = 10; k < 15; ++k) h(0, k) = grid.mass(k) * (1.0 + 0.3 * (k % 3));
+  Kokkos::deep_copy(rho, h);
+  solver.rates(rho, coag::make_kernel(s, grid), dydt);
+  auto d = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dydt);
+  double sum = 0, gross = 0;
+  int gaining = 0;
+  for (int k = 0; k < grid.size(); ++k) {
+    sum += d(0, k);
+    gross += std::fabs(d(0, k));
+    if (h(0, k) == 0) EXPECT_GE(d(0, k), 0.0) << "bin " << k;
+    gaining += h(0, k) == 0 && d(0, k) > 0;
+  }
+  EXPECT_EQ(gaining, 3);  // products of bins 10-14 (up to 2 m_14) reach bins 15-17
+  EXPECT_LT(std::fabs(sum), 1e-14 * gross);
 }
 
 TEST(CoagulationRates, ConstantKernelSinglePair) {

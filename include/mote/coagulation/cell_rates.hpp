@@ -8,12 +8,15 @@
 //   gain_k = sum_{p -> k} w n_i n_j K^coag_p + sum_{p -> k} w n_i n_j K^frag_p
 //            + sum_{l >= k} B_l N_k(m^e_{l+1})            (eq. 61, 63-67)
 //   B_l    = sum_{p -> l} m_frag,p n_i n_j K^frag_p       (Rafikov et al. 2020)
+//   + with the quadratic product split, the correction entries of the
+//   coagulation and remnant splits times their limiters theta (product_split.hpp)
 // with K^coag_p = h_p K_ij p_coag, K^frag_p = h_p K_ij p_frag, h_p = 1/2 for
 // i = j (double counting, RBO24 after eq. 61). Number densities use
 // max(rho_k, 0) so a bin never loses mass it does not have.
 #pragma once
 
 #include "mote/coagulation/collision_tables.hpp"
+#include "mote/coagulation/product_split.hpp"
 #include "mote/core/kokkos_types.hpp"
 
 namespace mote::coagulation {
@@ -24,25 +27,38 @@ using PairCoefficients = Kokkos::View<Real**, Kokkos::LayoutRight, MemSpace>;
 struct CellRates {
   int n = 0;
   RealView1 mass;
-  GatherList coag, remnant, fragment;
+  GatherList coag, remnant, fragment, coag_correction, remnant_correction;
   RealView2 fragment_share;
   IntView1 pair_i, pair_j, self_target;
   PairCoefficients k_coag, k_frag;  // (batch cell, pair)
   bool has_fragmentation = true;
+  bool has_correction = false;
 
   CellRates() = default;
   CellRates(const CollisionTables& t, const PairCoefficients& kc, const PairCoefficients& kf, bool frag)
       : n(t.species), mass(t.mass), coag(t.coag), remnant(t.remnant), fragment(t.fragment),
-        fragment_share(t.fragment_share), pair_i(t.pair_i), pair_j(t.pair_j), self_target(t.self_target), k_coag(kc), k_frag(kf),
-        has_fragmentation(frag) {}
+        coag_correction(t.coag_correction), remnant_correction(t.remnant_correction), fragment_share(t.fragment_share),
+        pair_i(t.pair_i), pair_j(t.pair_j), self_target(t.self_target), k_coag(kc), k_frag(kf), has_fragmentation(frag),
+        has_correction(t.has_correction) {}
 
-  /// dydt = f(y) for batch cell `lc`; `nd` and `bucket` are scratch arrays of n values.
+  /// Scratch values the rate evaluation needs besides y and dydt: nd, bucket (n each), theta (2 n).
+  static constexpr int scratch_per_species = 4;
+
+  /// dydt = f(y) for batch cell `lc`; `nd` and `bucket` are scratch arrays of n
+  /// values, `theta` one of 2 n (the split limiters).
   template <class Team, class V>
   KOKKOS_INLINE_FUNCTION void operator()(const Team& team, int lc, const V& y, const V& dydt, const V& nd,
-                                         const V& bucket) const {
+                                         const V& bucket, const V& theta) const {
     const int nn = n;
     const auto m = mass;
-    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nn), [&](int k) { nd(k) = math::max(y(k), Real(0)) / m(k); });
+    const bool corr = has_correction;
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nn), [&](int k) {
+      nd(k) = math::max(y(k), Real(0)) / m(k);
+      if (corr) {
+        theta(2 * k) = k > 0 ? split_limiter(y(k - 1), y(k)) : Real(0);
+        theta(2 * k + 1) = k + 1 < nn ? split_limiter(y(k + 1), y(k)) : Real(0);
+      }
+    });
     team.team_barrier();
     const auto kc = k_coag;
     const auto kf = k_frag;
@@ -65,6 +81,8 @@ struct CellRates {
     const auto co = coag;
     const auto re = remnant;
     const auto share = fragment_share;
+    const auto cc = coag_correction;
+    const auto rc = remnant_correction;
     Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nn), [&](int k) {
       const Real nk = nd(k);
       Real loss = 0;
@@ -89,6 +107,17 @@ struct CellRates {
           gain += re.weight(e) * nd(pi(p)) * nd(pj(p)) * kf(lc, p);
         }
         for (int l = k; l < nn; ++l) gain += bucket(l) * share(l, k);
+      }
+      if (corr) {
+        for (int e = cc.ptr(k); e < cc.ptr(k + 1); ++e) {
+          const int p = cc.pair(e);
+          gain += cc.weight(e) * theta(cc.limiter(e)) * nd(pi(p)) * nd(pj(p)) * kc(lc, p);
+        }
+        if (frag)
+          for (int e = rc.ptr(k); e < rc.ptr(k + 1); ++e) {
+            const int p = rc.pair(e);
+            gain += rc.weight(e) * theta(rc.limiter(e)) * nd(pi(p)) * nd(pj(p)) * kf(lc, p);
+          }
       }
       dydt(k) = gain - loss;
     });

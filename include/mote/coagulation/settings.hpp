@@ -19,6 +19,7 @@ struct CoagulationSettings {
   Real v_frag = 100.0;              // cm/s
   Real fragment_slope = 11.0 / 6.0; // eta of n(m) ~ m^-eta (RBO24 eq. 66)
   Real chi_im = 1.0;                // RBO24 eq. 68
+  std::string product_split = "two-bin";  // two-bin (RBO24 eq. 63) | quadratic (product_split.hpp)
   Real rel_tol = 1e-2;              // BS32 relative tolerance
   Real abs_tol = 1e-10;             // BS32 absolute tolerance, times the cell's total dust density
   int max_substeps = 1000000;       // per cell and call
