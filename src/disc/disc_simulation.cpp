@@ -51,6 +51,7 @@ void DiscSimulation::declare(core::DeckSchema& schema) {
   GasDisc::declare(schema);
   DustSettings::declare(schema);
   DriverSettings::declare(schema);
+  coagulation::declare(schema);
 }
 
 DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units,
@@ -63,6 +64,13 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
   initial_dust(*grid_, gas_->fields(), dust_->W);
   dust_->initialise_from_primitives();
   driver_ = std::make_unique<DiscDriver>(*dust_, *gas_, DriverSettings::from_deck(deck));
+  if (deck.has_table("coagulation")) {
+    // RBO24 sec. 6: coagulation on its own adaptive schedule, after the dust step.
+    coag_ = std::make_unique<DiscCoagulation>(*grid_, *dust_, coagulation::settings_from_deck(deck), units);
+    driver_->add({"coagulation", Schedule::adaptive(),
+                  [this](double, double elapsed) { coag_->update(gas_->fields(), elapsed); },
+                  [this] { return coag_->next_interval(); }});
+  }
 }
 
 void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
@@ -107,6 +115,7 @@ void DiscSimulation::save_state(io::H5File& file) const {
   mesh::write_state(file, "/state/dust_W", *grid_, dust_->W);
   gas_->save_state(file);
   driver_->save_state(file);
+  if (coag_) coag_->save_state(file);
 }
 
 void DiscSimulation::load_state(const io::H5File& file) {
@@ -115,6 +124,7 @@ void DiscSimulation::load_state(const io::H5File& file) {
   gas_->load_state(file);
   dust_->set_gas(gas_->fields());
   driver_->load_state(file);
+  if (coag_) coag_->load_state(file);
 }
 
 double DiscSimulation::min_dust_density() const {

@@ -1,7 +1,9 @@
 // A coupled dust-gas disc simulation for the run loop (RBO24 sec. 3 and 6):
 // the (R, theta) grid of [grid], the gas disc of [gas]/[star] (GasDisc, eq.
 // 26-37), the multi-species dust of [dust] (DustDynamics, eq. 4-19) and the
-// operator-splitting driver of [driver] (DiscDriver). Problems supply only the
+// operator-splitting driver of [driver] (DiscDriver), and coagulation on the
+// dust species when the deck has a [coagulation] table (DiscCoagulation, RBO24
+// sec. 5, adaptive schedule). Problems supply only the
 // initial dust (e.g. well_mixed) and may register further sub-solvers with
 // driver().add(...) or gas hooks with gas().add_source(...).
 //
@@ -9,7 +11,8 @@
 // dust_rho_<s>, dust_vR_<s>, dust_vphi_<s>, dust_vZ_<s>, dust_ts_<s> (Epstein
 // stopping time, eq. 14), the cell field v_K = (-R g_R)^1/2 (circular
 // speed of a test particle at (R, Z)) and /data/dust_sizes (cm), /data/GM.
-// Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping.
+// Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping and
+// the coagulation's proposed sub-steps.
 // History: dust_mass_<s>, dust_rho_min, gas_mass.
 #pragma once
 
@@ -20,6 +23,7 @@
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
+#include "mote/disc/disc_coagulation.hpp"
 #include "mote/disc/disc_driver.hpp"
 #include "mote/disc/dust_dynamics.hpp"
 #include "mote/disc/gas_disc.hpp"
@@ -67,6 +71,7 @@ class DiscSimulation : public io::Simulation {
   std::unique_ptr<GasDisc> gas_;
   std::unique_ptr<DustDynamics> dust_;
   std::unique_ptr<DiscDriver> driver_;
+  std::unique_ptr<DiscCoagulation> coag_;  // when the deck has [coagulation]
 };
 
 }  // namespace mote::disc
