@@ -69,6 +69,7 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
   W_half_ = View4("dust::W_half", NI, NJ, ns_, kDustVars);
   flux_R_ = View4("dust::flux_R", NI + 1, NJ, ns_, kDustVars);
   flux_Z_ = View4("dust::flux_Z", NI, NJ + 1, ns_, kDustVars);
+  slope_ = View4("dust::slope", NI, NJ, ns_, kDustVars);
   gas_ = GasFields(NI, NJ);
   gas_D_ = RealView2("dust::gas_D", NI, NJ);
   inv_rho_g_ = RealView2("dust::inv_rho_g", NI, NJ);
@@ -158,6 +159,24 @@ void DustDynamics::fill_ghosts(const View4& w) {
   });
 }
 
+void DustDynamics::compute_slopes(const View4& w, bool radial) {
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt;
+  auto sl = slope_;
+  if (radial) {
+    auto g = slope_R_;
+    for_cells("disc::dust_slopes_radial", ng - 1, ng + nr + 1, ng, ng + nt, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+      for (int k = 0; k < kDustVars; ++k)
+        sl(i, j, s, k) = mignone_slope(w(i - 1, j, s, k), w(i, j, s, k), w(i + 1, j, s, k), g(i, 0), g(i, 1), g(i, 2), g(i, 3));
+    });
+  } else {
+    auto g = slope_Z_;
+    for_cells("disc::dust_slopes_theta", ng, ng + nr, ng - 1, ng + nt + 1, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+      for (int k = 0; k < kDustVars; ++k)
+        sl(i, j, s, k) = mignone_slope(w(i, j - 1, s, k), w(i, j, s, k), w(i, j + 1, s, k), g(j, 0), g(j, 1), g(j, 2), g(j, 3));
+    });
+  }
+}
+
 void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto FR = flux_R_, FZ = flux_Z_;
@@ -165,7 +184,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
   auto AR = grid_.AR, AZ = grid_.AZ;
   auto inv_rho_g = inv_rho_g_, gas_D = gas_D_;
-  auto sR = slope_R_, sZ = slope_Z_;
+  auto slope = slope_;
   auto sc = schmidt_;
   const auto coef = diffusion_;
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
@@ -175,16 +194,15 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   const bool closed_lo = b.lower == mesh::BoundaryKind::Closed, closed_hi = b.upper == mesh::BoundaryKind::Closed;
 
   // Radial faces at Re(i), i in [ng, ng + nr]; cells L = i-1, R = i.
+  if (second_order) compute_slopes(w, true);
   for_cells("disc::dust_flux_radial", ng, ng + nr + 1, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
     Real ql[kDustVars], qr[kDustVars];
     for (int k = 0; k < kDustVars; ++k) {
       ql[k] = w(i - 1, j, s, k);
       qr[k] = w(i, j, s, k);
       if (second_order) {
-        const Real sl = mignone_slope(w(i - 2, j, s, k), ql[k], qr[k], sR(i - 1, 0), sR(i - 1, 1), sR(i - 1, 2), sR(i - 1, 3));
-        const Real sr = mignone_slope(ql[k], qr[k], w(i + 1, j, s, k), sR(i, 0), sR(i, 1), sR(i, 2), sR(i, 3));
-        ql[k] += sl * (Re(i) - Rc(i - 1));
-        qr[k] += sr * (Re(i) - Rc(i));
+        ql[k] += slope(i - 1, j, s, k) * (Re(i) - Rc(i - 1));
+        qr[k] += slope(i, j, s, k) * (Re(i) - Rc(i));
       }
     }
     Real f[kDustVars] = {0, 0, 0, 0};
@@ -212,16 +230,15 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   });
 
   // Theta faces at te(j), j in [ng, ng + nt]; cells L = j-1 (below), R = j; coordinate tan(theta).
+  if (second_order) compute_slopes(w, false);
   for_cells("disc::dust_flux_theta", ng, ng + nr, ng, ng + nt + 1, ns, KOKKOS_LAMBDA(int i, int j, int s) {
     Real ql[kDustVars], qr[kDustVars];
     for (int k = 0; k < kDustVars; ++k) {
       ql[k] = w(i, j - 1, s, k);
       qr[k] = w(i, j, s, k);
       if (second_order) {
-        const Real sl = mignone_slope(w(i, j - 2, s, k), ql[k], qr[k], sZ(j - 1, 0), sZ(j - 1, 1), sZ(j - 1, 2), sZ(j - 1, 3));
-        const Real sr = mignone_slope(ql[k], qr[k], w(i, j + 1, s, k), sZ(j, 0), sZ(j, 1), sZ(j, 2), sZ(j, 3));
-        ql[k] += sl * (tan_te(j) - tan_tc(j - 1));
-        qr[k] += sr * (tan_te(j) - tan_tc(j));
+        ql[k] += slope(i, j - 1, s, k) * (tan_te(j) - tan_tc(j - 1));
+        qr[k] += slope(i, j, s, k) * (tan_te(j) - tan_tc(j));
       }
     }
     Real f[kDustVars] = {0, 0, 0, 0};

@@ -85,6 +85,9 @@ class DustDynamics {
  private:
   void fill_ghosts(const View<Real****>& w);
   void compute_fluxes(const View<Real****>& w, bool second_order);
+  /// Limited slopes of w along R (radial = true, cells i in [ng-1, ng+nr]) or
+  /// tan(theta) (cells j in [ng-1, ng+nt]) into slope_, once per cell.
+  void compute_slopes(const View<Real****>& w, bool radial);
   void advance_stage(const View<Real****>& w_source, double dt_stage, const View<Real****>& w_out, bool update_q);
 
   const mesh::Grid& grid_;
@@ -94,7 +97,7 @@ class DustDynamics {
   GasFields gas_;
   mesh::DiffusionCoefficients diffusion_;
   RealView1 schmidt_, sizes_;
-  View<Real****> W_half_, flux_R_, flux_Z_;
+  View<Real****> W_half_, flux_R_, flux_Z_, slope_;
   RealView2 gas_D_, inv_rho_g_;
   // Per-cell reconstruction geometry along R (i) and theta (j): inv_dp, inv_dm, c_F, c_B.
   RealView2 slope_R_, slope_Z_;
