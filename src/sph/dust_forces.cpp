@@ -5,7 +5,9 @@
 //   sph::dust_forces    momentum (PL15 eq. 25), AV with (1 - eps_a) (eq. 31-32),
 //                       conductivity / (1 - eps_a) (eq. 34-35), du/dt (eq. 27 / 45,
 //                       HPL18 eq. 55-56) and, for direct second derivatives, the dust
-//                       equation PL15 eq. 43 (eps_j, D_j = eps_j tilde T_sj) or HPL18 eq. 51 (S_j).
+//                       equation PL15 eq. 43 (eps_j, D_j = eps_j tilde T_sj; optionally with the
+//                       pair coefficient limited to 2 D of the donor, so eps_j >= 0) or HPL18
+//                       eq. 51 (S_j, stored as S_j / sqrt(rho)).
 //   sph::dust_first     two first derivatives: PL15 eq. 26 with (1 - eps) Delta f = -a_hydro
 //                       (eq. 29-30), eq. B7 for S_j, and the diffusion part of eq. 27.
 // Per-particle gathers over the symmetric neighbour list, no atomics.
@@ -14,6 +16,7 @@
 #include "mote/sph/eos.hpp"
 #include "mote/sph/kernels.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
+#include "mote/sph/pair_terms.hpp"
 
 namespace mote::sph {
 
@@ -47,6 +50,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
   const DustSettings& st = dust.settings();
   const bool svar = st.variable == DustVariable::SqrtRhoEps;
   const bool second = st.discretisation == DustDiscretisation::SecondDerivatives;
+  const bool limited = st.flux == DustFlux::DonorLimited;
   const bool energy = cfg.eos == EosType::Adiabatic;
   const bool utilde = energy && st.energy == DustEnergy::UTilde;
   const Real gamma = cfg.gamma;
@@ -74,6 +78,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
   const auto divv = p.divv;
   const auto vsig = p.vsig;
   const auto var = dust.var_pred;
+  const auto sv = svar ? dust.s_pairs : var;  // S_j = sqrt(rho) q_j in the pair terms (S variable)
   const auto dvar = dust.dvar;
   const auto ts = dust.ts;
   const auto coef = dust.coef;
@@ -97,7 +102,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
       "sph::dust_prepare", 0, n, KOKKOS_LAMBDA(int a) {
         const Real rhoa = rho(a);
         Real e = 0.0;
-        for (int j = 0; j < ns; ++j) e += svar ? var(a, j) * var(a, j) / rhoa : var(a, j);
+        for (int j = 0; j < ns; ++j) e += svar ? var(a, j) * var(a, j) : var(a, j);
         const Real fg = 1.0 - e;  // gas fraction
         eps_tot(a) = e;
         Real ua = 0.0;
@@ -116,7 +121,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         uloc(a) = ua;
         Real sum_ts = 0.0;
         for (int j = 0; j < ns; ++j) {
-          Real ej = svar ? var(a, j) * var(a, j) / rhoa : var(a, j);
+          Real ej = svar ? var(a, j) * var(a, j) : var(a, j);
           ej = ej > 0.0 ? ej : 0.0;
           Real t;
           if (law == static_cast<int>(DragLaw::ConstantK)) {
@@ -132,7 +137,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         eps_ts(a) = sum_ts;
         Real dsum = 0.0;
         for (int j = 0; j < ns; ++j) {
-          Real ej = svar ? var(a, j) * var(a, j) / rhoa : var(a, j);
+          Real ej = svar ? var(a, j) * var(a, j) : var(a, j);
           ej = ej > 0.0 ? ej : 0.0;
           const Real tt = (ts(a, j) - sum_ts) / fg;  // HPL18 eq. 15
           coef(a, j) = svar ? tt : ej * tt;
@@ -143,6 +148,8 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
 
   par_for(
       "sph::dust_pack", 0, n, KOKKOS_LAMBDA(int i) {
+        if (svar)
+          for (int j = 0; j < ns; ++j) sv(i, j) = var(i, j) * math::sqrt(rho(i));
         for (int d = 0; d < Dim; ++d) {
           pk(i, kX + d) = x(i, d);
           pk(i, kV + d) = vel(i, d);
@@ -166,10 +173,8 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
 
   par_for(
       "sph::dust_forces", 0, n, KOKKOS_LAMBDA(int a) {
-        Real acc_a[3] = {0, 0, 0};
-        Real du = 0.0, du_d = 0.0, dv = 0.0, sumc = 0.0;
-        const Real csa = pk(a, kCs);
-        Real vs = csa;
+        Real du_d = 0.0, sumc = 0.0;
+        HydroSums sum(pk(a, kCs));
         if (second)
           for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
         if (pk(a, kIsGas) == 0.0) {
@@ -179,7 +184,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           }
           dudt(a) = 0.0;
           divv(a) = 0.0;
-          vsig(a) = vs;
+          vsig(a) = sum.vs;
           return;
         }
         Real xa[3] = {0, 0, 0}, va[3] = {0, 0, 0};
@@ -188,50 +193,42 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           va[d] = pk(a, kV + d);
         }
         const Real ha = pk(a, kH), ha_inv = 1.0 / ha;
-        const Real ppfa = pk(a, kPpf), rpfa = pk(a, kRpf), rpfava = pk(a, kRpfAv), acsa = pk(a, kAcs);
+        const Real rpfa = pk(a, kRpf);
         const Real ua = pk(a, kU), Pa = pk(a, kP), rhoa = pk(a, kRho), dta = pk(a, kDtot);
+        // AV with (1 - eps): PL15 eq. 31 / HPL18 eq. 57; (1 - eps_a) du/dt: PL15 eq. 27 first term.
+        const HydroSide sa{pk(a, kPpf), pk(a, kRpfAv), pk(a, kAcs), rpfa, ua, pk(a, kCs)};
         const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
         const int jend = offsets(a + 1);
         for (int jj = offsets(a); jj < jend; ++jj) {
           const int b = neigh(jj);
-          const int img = image(jj);
-          Real dx[3] = {0, 0, 0};
-          Real r2 = 0.0;
-          for (int d = 0; d < Dim; ++d) {
-            dx[d] = box.separation(xa[d], pk(b, kX + d), img, d);
-            r2 += dx[d] * dx[d];
-          }
-          if (r2 <= 0.0 || pk(b, kIsGas) == 0.0) continue;
-          const Real hb = pk(b, kH), hb_inv = pk(b, kHinv);
-          const bool inside = r2 < R * R * ha * ha || r2 < R * R * hb * hb;
-          const Real r = math::sqrt(r2);
-          const Real rinv = 1.0 / r;
-          Real f, dfa, dfb;
-          K::shape(r * ha_inv, f, dfa);
-          K::shape(r * hb_inv, f, dfb);
-          const Real fa = norm_a * dfa;
-          const Real fb = K::norm() * ipow<Dim + 1>(hb_inv) * dfb;
-          Real vr = 0.0;
-          for (int d = 0; d < Dim; ++d) vr += (va[d] - pk(b, kV + d)) * dx[d];
-          vr *= rinv;
-          const Real vneg = vr < 0.0 ? vr : 0.0;
-          // PL15 eq. 31 / HPL18 eq. 57: q_ab,a = -1/2 rho_a (1 - eps_a) v_sig,a v_ab.r_hat.
-          const Real qa = -0.5 * rpfava * (acsa - beta * vneg) * vneg;
-          const Real qb = -0.5 * pk(b, kRpfAv) * (pk(b, kAcs) - beta * vneg) * vneg;
-          const Real mb = pk(b, kM);
-          const Real fpair = mb * ((ppfa + qa) * fa + (pk(b, kPpf) + qb) * fb) * rinv;  // PL15 eq. 25
-          for (int d = 0; d < Dim; ++d) acc_a[d] -= fpair * dx[d];
+          PairGeometry<Dim, K> g;
+          if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
+          const Real hb = pk(b, kH);
+          const bool inside = g.r2 < R * R * ha * ha || g.r2 < R * R * hb * hb;
+          g.gradients(ha_inv, norm_a, pk(b, kHinv));
+          g.approach(va, pk, kV, b);
           const Real ub = pk(b, kU);
-          if (energy) {
-            du += mb * (ppfa + qa) * vr * fa;  // (1 - eps_a) du/dt, PL15 eq. 27 first term
-            const Real qcond = 0.5 * alpha_u * math::fabs(vr) * (ua - ub);
-            du += mb * qcond * (rpfa * fa + pk(b, kRpf) * fb);  // PL15 eq. 34-35
-          }
+          const HydroSide sb{pk(b, kPpf), pk(b, kRpfAv), pk(b, kAcs), pk(b, kRpf), ub, pk(b, kCs)};
+          const Real mb = pk(b, kM);
+          sum.add(g, inside, sa, sb, mb, beta, alpha_u, energy);
           if (second) {
             const Real rhob = pk(b, kRho);
-            const Real fbar_r = 0.5 * (fa + fb) * rinv;
+            const Real fbar_r = 0.5 * (g.fa + g.fb) * g.rinv;
             const Real dP = Pa - pk(b, kP);
-            if (!svar) {
+            if (!svar && limited) {
+              // PL15 eq. 43 with D_j,a + D_j,b limited to 2 D_j of the particle the dust leaves
+              // (the donor): an empty particle loses no dust, so eps_j stays >= 0.
+              const Real c = mb / (rhoa * rhob) * dP * fbar_r;
+              Real dsum = 0.0;
+              for (int j = 0; j < ns; ++j) {
+                const Real ca = coef(a, j), cb = coef(b, j);
+                const Real donor = 2.0 * (c * (ca + cb) > 0.0 ? ca : cb);
+                const Real d = math::fabs(ca + cb) < math::fabs(donor) ? ca + cb : donor;
+                dvar(a, j) -= c * d;
+                dsum += d;
+              }
+              du_d -= 0.5 * c * (ua - ub) * dsum;  // PL15 eq. 45 with the same coefficient
+            } else if (!svar) {
               // PL15 eq. 43: d eps_j,a/dt = -sum_b m_b / (rho_a rho_b) (D_j,a + D_j,b)(P_a - P_b) Fbar / r.
               const Real c = mb / (rhoa * rhob) * dP * fbar_r;
               sumc += c;
@@ -244,28 +241,24 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
               const Real ira = 1.0 / rhoa, irb = 1.0 / rhob;
               Real e = 0.0;
               for (int j = 0; j < ns; ++j) {
-                const Real t = c * var(b, j) * (coef(a, j) * ira + coef(b, j) * irb);
+                const Real t = c * sv(b, j) * (coef(a, j) * ira + coef(b, j) * irb);
                 dvar(a, j) -= 0.5 * t;
-                e += var(a, j) * t;
+                e += sv(a, j) * t;
               }
               du_d -= 0.5 * (ua - ub) * ira * e;
             }
           }
-          dv -= mb * vr * fa;
-          const Real csb = pk(b, kCs);
-          const Real vsab = (csa > csb ? csa : csb) - beta * vneg;
-          vs = (inside && vsab > vs) ? vsab : vs;
         }
-        if (second && !svar)
+        if (second && !svar && !limited)
           for (int j = 0; j < ns; ++j) dvar(a, j) -= sumc * coef(a, j);
         for (int d = 0; d < Dim; ++d) {
-          acc(a, d) = acc_a[d];
-          gforce(a, d) = -acc_a[d];
+          acc(a, d) = sum.acc[d];
+          gforce(a, d) = -sum.acc[d];
         }
         const Real fg = 1.0 - eps_tot(a);
-        dudt(a) = energy ? (utilde ? du : (du + du_d) / fg) : 0.0;
-        divv(a) = dv * rpfa;
-        vsig(a) = vs;
+        dudt(a) = energy ? (utilde ? sum.du : (sum.du + du_d) / fg) : 0.0;
+        divv(a) = sum.dv * rpfa;
+        vsig(a) = sum.vs;
       });
 
   if (!second) {
@@ -286,43 +279,30 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           const int jend = offsets(a + 1);
           for (int jj = offsets(a); jj < jend; ++jj) {
             const int b = neigh(jj);
-            const int img = image(jj);
-            Real dx[3] = {0, 0, 0};
-            Real r2 = 0.0;
-            for (int d = 0; d < Dim; ++d) {
-              dx[d] = box.separation(xa[d], pk(b, kX + d), img, d);
-              r2 += dx[d] * dx[d];
-            }
-            if (r2 <= 0.0 || pk(b, kIsGas) == 0.0) continue;
-            const Real r = math::sqrt(r2);
-            const Real rinv = 1.0 / r;
-            Real f, dfa, dfb;
-            K::shape(r * ha_inv, f, dfa);
-            const Real hb_inv = pk(b, kHinv);
-            K::shape(r * hb_inv, f, dfb);
-            const Real fa = norm_a * dfa;
-            const Real fb = K::norm() * ipow<Dim + 1>(hb_inv) * dfb;
+            PairGeometry<Dim, K> g;
+            if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
+            g.gradients(ha_inv, norm_a, pk(b, kHinv));
             Real gra = 0.0, grb = 0.0;
             for (int d = 0; d < Dim; ++d) {
-              gra += ga[d] * dx[d];
-              grb += gforce(b, d) * dx[d];
+              gra += ga[d] * g.dx[d];
+              grb += gforce(b, d) * g.dx[d];
             }
-            gra *= rinv;
-            grb *= rinv;
+            gra *= g.rinv;
+            grb *= g.rinv;
             const Real mb = pk(b, kM);
             const Real ub = pk(b, kU);
             if (!svar) {
-              const Real A = rpfa * gra * fa, B = pk(b, kRpf) * grb * fb;
+              const Real A = rpfa * gra * g.fa, B = pk(b, kRpf) * grb * g.fb;
               sum_a += mb * A;
               for (int j = 0; j < ns; ++j) dvar(a, j) -= mb * B * coef(b, j);
               du_d -= dta * mb * (ua - ub) * A;  // PL15 eq. 27, second term
             } else {
-              const Real A = rpf2a * gra * fa, B = pk(b, kRpf2) * grb * fb;
+              const Real A = rpf2a * gra * g.fa, B = pk(b, kRpf2) * grb * g.fb;
               Real e = 0.0;
               for (int j = 0; j < ns; ++j) {
-                const Real sb = var(b, j);
+                const Real sb = sv(b, j);
                 dvar(a, j) -= 0.5 * rhoa * mb * sb * (coef(a, j) * A + coef(b, j) * B);  // eq. B7
-                e += var(a, j) * coef(a, j) * sb;
+                e += sv(a, j) * coef(a, j) * sb;
               }
               du_d -= mb * (ua - ub) * A * e;
             }
@@ -334,10 +314,13 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
   }
 
   if (svar) {
-    // S_a / (2 rho_a Omega_a) sum_b m_b v_ab . grad W_ab(h_a) = -S_a div v / 2 (HPL18 eq. 51, PL15 eq. B7).
+    // The stored variable is q_j = S_j / sqrt(rho) = sqrt(eps_j): dq/dt = (dS/dt)_pairs / sqrt(rho).
+    // The last term of HPL18 eq. 51 / PL15 eq. B7, S_a / (2 rho_a Omega_a) sum_b m_b v_ab . grad W_ab
+    // = (S / 2) dln(rho)/dt, is the change of S at fixed eps: integrated exactly by storing q.
     par_for(
-        "sph::dust_sdivv", 0, n, KOKKOS_LAMBDA(int a) {
-          for (int j = 0; j < ns; ++j) dvar(a, j) -= 0.5 * var(a, j) * divv(a);
+        "sph::dust_dq", 0, n, KOKKOS_LAMBDA(int a) {
+          const Real r = 1.0 / math::sqrt(rho(a));
+          for (int j = 0; j < ns; ++j) dvar(a, j) *= r;
         });
   }
 }

@@ -27,6 +27,10 @@ void DustSettings::declare(core::DeckSchema& s) {
       .default_value(std::string("second_derivatives"))
       .one_of({"second_derivatives", "first_derivatives"})
       .doc("Direct second derivatives (PL15 eq. 43) or two first derivatives (PL15 eq. 26, 29-30).");
+  s.string("dust.flux")
+      .default_value(std::string("arithmetic"))
+      .one_of({"arithmetic", "donor_limited"})
+      .doc("PL15 eq. 43 (eps, second derivatives): D_a + D_b, or limited to 2 D of the donor (eps >= 0).");
   s.string("dust.energy")
       .default_value(std::string("u"))
       .one_of({"u", "u_tilde"})
@@ -76,6 +80,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   s.variable = d.string("dust.variable") == "epsilon" ? DustVariable::Epsilon : DustVariable::SqrtRhoEps;
   s.discretisation = d.string("dust.discretisation") == "second_derivatives" ? DustDiscretisation::SecondDerivatives
                                                                              : DustDiscretisation::FirstDerivatives;
+  s.flux = d.string("dust.flux") == "donor_limited" ? DustFlux::DonorLimited : DustFlux::Arithmetic;
   s.energy = d.string("dust.energy") == "u" ? DustEnergy::U : DustEnergy::UTilde;
   const std::string drag = d.string("dust.drag");
   s.drag = drag == "constant_K" ? DragLaw::ConstantK

@@ -4,6 +4,7 @@
 
 #include "mote/core/loops.hpp"
 #include "mote/sph/eos.hpp"
+#include "mote/sph/pair_terms.hpp"
 
 namespace mote::sph {
 
@@ -123,15 +124,12 @@ void forces_impl(Particles& p, const NeighbourList& nl, const Box& box, const Sp
 
   par_for(
       "sph::forces", 0, n, KOKKOS_LAMBDA(int a) {
-        Real acc_a[3] = {0, 0, 0};
-        Real du = 0.0, dv = 0.0;
-        const Real csa = pk(a, kSlotCs);
-        Real vs = csa;
+        HydroSums sum(pk(a, kSlotCs));
         if (pk(a, kSlotGas) == 0.0) {
           for (int d = 0; d < Dim; ++d) acc(a, d) = 0.0;
           dudt(a) = 0.0;
           divv(a) = 0.0;
-          vsig(a) = vs;
+          vsig(a) = sum.vs;
           return;
         }
         Real xa[3] = {0, 0, 0}, va[3] = {0, 0, 0};
@@ -140,58 +138,28 @@ void forces_impl(Particles& p, const NeighbourList& nl, const Box& box, const Sp
           va[d] = pk(a, kSlotV + d);
         }
         const Real ha = pk(a, kSlotH), ha_inv = 1.0 / ha;
-        const Real ppfa = pk(a, kSlotPpf), rpfa = pk(a, kSlotRpf), acsa = pk(a, kSlotAcs), ua = pk(a, kSlotU);
+        const Real rpfa = pk(a, kSlotRpf);
+        const HydroSide sa{pk(a, kSlotPpf), rpfa, pk(a, kSlotAcs), rpfa, pk(a, kSlotU), pk(a, kSlotCs)};
         const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
         const int jend = offsets(a + 1);
         for (int j = offsets(a); j < jend; ++j) {
           const int b = neigh(j);
-          const int img = image(j);
-          Real dx[3] = {0, 0, 0};
-          Real r2 = 0.0;
-          for (int d = 0; d < Dim; ++d) {
-            dx[d] = box.separation(xa[d], pk(b, kSlotX + d), img, d);
-            r2 += dx[d] * dx[d];
-          }
-          if (r2 <= 0.0 || pk(b, kSlotGas) == 0.0) continue;
+          PairGeometry<Dim, K> g;
+          if (!g.separate(box, xa, pk, kSlotX, b, image(j)) || pk(b, kSlotGas) == 0.0) continue;
           // Branch-free from here: pairs in the list skin beyond both supports
           // get F = 0 from the kernels and are excluded from v_sig by a select.
-          const Real hb = pk(b, kSlotH), hb_inv = pk(b, kSlotHinv);
-          const bool inside = r2 < R * R * ha * ha || r2 < R * R * hb * hb;
-          const Real r = math::sqrt(r2);
-          const Real rinv = 1.0 / r;
-          // F_ab(h_a), F_ab(h_b): grad W = F r_hat (PL15 eq. 34).
-          Real f, dfa, dfb;
-          K::shape(r * ha_inv, f, dfa);
-          K::shape(r * hb_inv, f, dfb);
-          const Real fa = norm_a * dfa;
-          const Real fb = K::norm() * ipow<Dim + 1>(hb_inv) * dfb;
-          Real vr = 0.0;
-          for (int d = 0; d < Dim; ++d) vr += (va[d] - pk(b, kSlotV + d)) * dx[d];
-          vr *= rinv;  // v_ab . r_hat_ab
+          const Real hb = pk(b, kSlotH);
+          const bool inside = g.r2 < R * R * ha * ha || g.r2 < R * R * hb * hb;
+          g.gradients(ha_inv, norm_a, pk(b, kSlotHinv));
+          g.approach(va, pk, kSlotV, b);
           const Real rpfb = pk(b, kSlotRpf);
-          // Artificial viscosity q / (Omega rho^2), PL15 eq. 31-32: approaching pairs only.
-          const Real vneg = vr < 0.0 ? vr : 0.0;
-          const Real qa = -0.5 * rpfa * (acsa - beta * vneg) * vneg;
-          const Real qb = -0.5 * rpfb * (pk(b, kSlotAcs) - beta * vneg) * vneg;
-          const Real mb = pk(b, kSlotM);
-          // PL15 eq. 25.
-          const Real fpair = mb * ((ppfa + qa) * fa + (pk(b, kSlotPpf) + qb) * fb) * rinv;
-          for (int d = 0; d < Dim; ++d) acc_a[d] -= fpair * dx[d];
-          if (energy) {
-            // PL15 eq. 27 (PdV + viscous heating) and eq. 34-35 (conductivity).
-            du += mb * (ppfa + qa) * vr * fa;
-            const Real qcond = 0.5 * alpha_u * math::fabs(vr) * (ua - pk(b, kSlotU));
-            du += mb * qcond * (rpfa * fa + rpfb * fb);
-          }
-          dv -= mb * vr * fa;
-          const Real csb = pk(b, kSlotCs);
-          const Real vsab = (csa > csb ? csa : csb) - beta * vneg;
-          vs = (inside && vsab > vs) ? vsab : vs;
+          const HydroSide sb{pk(b, kSlotPpf), rpfb, pk(b, kSlotAcs), rpfb, pk(b, kSlotU), pk(b, kSlotCs)};
+          sum.add(g, inside, sa, sb, pk(b, kSlotM), beta, alpha_u, energy);
         }
-        for (int d = 0; d < Dim; ++d) acc(a, d) = acc_a[d];
-        dudt(a) = energy ? du : 0.0;
-        divv(a) = dv * rpfa;  // -(1 / (Omega_a rho_a)) sum m_b v_ab . grad W(h_a)
-        vsig(a) = vs;
+        for (int d = 0; d < Dim; ++d) acc(a, d) = sum.acc[d];
+        dudt(a) = energy ? sum.du : 0.0;
+        divv(a) = sum.dv * rpfa;  // -(1 / (Omega_a rho_a)) sum m_b v_ab . grad W(h_a)
+        vsig(a) = sum.vs;
       });
 }
 

@@ -19,6 +19,7 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   var = RealView2("sph::dust_var", n, ns);
   var_pred = RealView2("sph::dust_var_pred", n, ns);
   dvar = RealView2("sph::dust_dvar", n, ns);
+  if (s_.variable == DustVariable::SqrtRhoEps) s_pairs = RealView2("sph::dust_s", n, ns);
   ts = RealView2("sph::dust_ts", n, ns);
   coef = RealView2("sph::dust_coef", n, ns);
   eps_tot = RealView1("sph::dust_eps", n);
@@ -58,14 +59,13 @@ void OneFluidDust::set_eps(const std::vector<Real>& eps) {
 }
 
 void OneFluidDust::initialise(const Particles& p) {
-  // var holds eps_j; S_j = sqrt(rho eps_j) (PL15 eq. B1) needs the density.
+  // var holds eps_j; the S variable stores q_j = S_j / sqrt(rho) = sqrt(eps_j) (PL15 eq. B1).
   if (s_.variable == DustVariable::SqrtRhoEps) {
     const auto v = var;
-    const auto rho = p.rho;
     const int ns = s_.nspecies;
     par_for(
-        "sph::dust_to_s", 0, p.n, KOKKOS_LAMBDA(int a) {
-          for (int j = 0; j < ns; ++j) v(a, j) = math::sqrt(rho(a) * (v(a, j) > 0.0 ? v(a, j) : 0.0));
+        "sph::dust_to_q", 0, p.n, KOKKOS_LAMBDA(int a) {
+          for (int j = 0; j < ns; ++j) v(a, j) = math::sqrt(v(a, j) > 0.0 ? v(a, j) : 0.0);
         });
   }
   Kokkos::deep_copy(var_pred, var);
@@ -150,19 +150,17 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
 RealView2 OneFluidDust::eps(const Particles& p) const {
   RealView2 out("sph::dust_eps_out", var.extent(0), var.extent(1));
   const auto v = var;
-  const auto rho = p.rho;
   const int ns = s_.nspecies;
   const bool svar = s_.variable == DustVariable::SqrtRhoEps;
   par_for(
       "sph::dust_eps", 0, p.n, KOKKOS_LAMBDA(int a) {
-        for (int j = 0; j < ns; ++j) out(a, j) = svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+        for (int j = 0; j < ns; ++j) out(a, j) = svar ? v(a, j) * v(a, j) : v(a, j);
       });
   return out;
 }
 
 Real OneFluidDust::dust_mass(const Particles& p) const {
   const auto v = var;
-  const auto rho = p.rho;
   const auto m = p.m;
   const int ns = s_.nspecies;
   const bool svar = s_.variable == DustVariable::SqrtRhoEps;
@@ -171,7 +169,7 @@ Real OneFluidDust::dust_mass(const Particles& p) const {
       "sph::dust_mass", 0, p.n,
       KOKKOS_LAMBDA(int a, Real& s) {
         Real e = 0.0;
-        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) : v(a, j);
         s += m(a) * e;
       },
       md);
@@ -181,7 +179,6 @@ Real OneFluidDust::dust_mass(const Particles& p) const {
 Real OneFluidDust::thermal_energy(const Particles& p, const SphConfig& cfg) const {
   if (cfg.eos != EosType::Adiabatic) return 0.0;
   const auto v = var;
-  const auto rho = p.rho;
   const auto m = p.m;
   const auto u = p.u;
   const int ns = s_.nspecies;
@@ -192,7 +189,7 @@ Real OneFluidDust::thermal_energy(const Particles& p, const SphConfig& cfg) cons
       "sph::dust_thermal", 0, p.n,
       KOKKOS_LAMBDA(int a, Real& s) {
         Real e = 0.0;
-        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) / rho(a) : v(a, j);
+        for (int j = 0; j < ns; ++j) e += svar ? v(a, j) * v(a, j) : v(a, j);
         s += m(a) * (utilde ? u(a) : (1.0 - e) * u(a));  // PL15 eq. 40, HPL18 eq. 52
       },
       eth);

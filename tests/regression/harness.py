@@ -45,3 +45,14 @@ def fit_order(resolutions, errors):
     x = np.log(1.0 / np.asarray(resolutions, dtype=float))
     y = np.log(np.asarray(errors, dtype=float))
     return float(np.polyfit(x, y, 1)[0])
+
+
+def check_conservation(checks, run_dir, energy_tol):
+    """Mass and x momentum conserved to 1e-12 (x total mass), total energy to energy_tol, from history.txt."""
+    import mote
+    h = mote.read_history(os.path.join(run_dir, "history.txt"))
+    m0 = h["mass"][0]
+    checks.check(abs(h["mass"][-1] - m0) <= 1e-12 * m0 and abs(h["momentum_x"][-1] - h["momentum_x"][0]) <= 1e-12 * m0,
+                 "mass and momentum conserved to 1e-12")
+    drift = abs(h["energy"][-1] - h["energy"][0]) / h["energy"][0]
+    checks.check(drift < energy_tol, f"energy drift {drift:.1e} < {energy_tol:g}")

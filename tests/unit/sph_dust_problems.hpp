@@ -1,12 +1,14 @@
-// Shared set-ups of the one-fluid dust tests (PL15 sec. 4; HPL18 sec. 4.1):
-// the dustywave (PL15 sec. 4.1) with its linear two-fluid solution, the
-// dustyshock (sec. 4.2) and the dustydiffuse (sec. 4.3) problems.
+// Reference solutions of the one-fluid dust tests (PL15 sec. 4.1; HPL18 sec.
+// 4.1): the linear two-fluid dustywave (LP11) and the same wave in the
+// linearised terminal-velocity equations (PL15 eq. 10-14), plus the dustywave
+// set-up of the tests on top of the library one (mote/sph/dust_problems.hpp).
 #pragma once
 
 #include <cmath>
 #include <complex>
 #include <vector>
 
+#include "mote/sph/dust_problems.hpp"
 #include "mote/sph/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_system.hpp"
@@ -114,66 +116,29 @@ struct DustyWaveSetup {
   double hfact = 1.2;
 };
 
-/// PL15 sec. 4.1: x in [0, 1) periodic, rho_g0 = rho_d0 = 1, v = 1e-4 sin(2 pi x),
-/// rho = 2 (1 + 1e-4 sin(2 pi x)), du = P0 / rho_g0^2 drho_g, gamma = 5/3, c_s = 1.
-/// N species: equal bins eps_j = eps / N of identical grains (K_j = K / N).
+/// PL15 sec. 4.1 through the library set-up (mote/sph/dust_problems.hpp):
+/// rho_g0 = rho_d0 = 1, gamma = 5/3, c_s = 1; N species: equal bins eps_j = eps / N
+/// of identical grains with K_j = K / N, which keeps T_sj = t_s (HPL18 eq. 14).
 inline SphSystem make_dustywave(const DustyWaveSetup& w) {
-  const double gamma = 5.0 / 3.0, amp = 1e-4, kx = 2.0 * M_PI;
-  const double rhog0 = 1.0, rho0 = 2.0, eps0 = 0.5;
-  const double P0 = rhog0 / gamma;  // c_s^2 = gamma P0 / rho_g0 = 1
-  const double u0 = P0 / ((gamma - 1.0) * rhog0);
   SphConfig cfg;
-  cfg.dim = 1;
   cfg.kernel = w.kernel;
   cfg.hfact = w.hfact;
-  cfg.eos = EosType::Adiabatic;
-  cfg.gamma = gamma;
+  cfg.gamma = 5.0 / 3.0;
   cfg.alpha = w.alpha;
   cfg.alpha_u = w.alpha_u;
-  Box box;
-  box.dim = 1;
-  box.lo[0] = 0.0;
-  box.hi[0] = 1.0;
-  box.periodic[0] = true;
-  ParticleSetup s;
-  s.dim = 1;
-  const double dx = 1.0 / w.n;
-  for (int i = 0; i < w.n; ++i) {
-    // Equal masses: M(x) = rho0 (x + amp (1 - cos kx) / k) = rho0 x0.
-    const double x0 = (i + 0.5) * dx;
-    double x = x0;
-    for (int it = 0; it < 50; ++it) {
-      const double f = x + amp * (1.0 - std::cos(kx * x)) / kx - x0;
-      x -= f / (1.0 + amp * std::sin(kx * x));
-    }
-    s.x.push_back(x);
-    s.v.push_back(amp * std::sin(kx * x));
-    s.m.push_back(rho0 * dx);
-    s.h.push_back(w.hfact * dx);
-    const double drhog = rhog0 * amp * std::sin(kx * x);
-    s.u.push_back(u0 + P0 / (rhog0 * rhog0) * drhog);
-  }
-  SphSystem sys(cfg, box);
-  sys.set_particles(s);
   DustSettings ds;
   ds.nspecies = w.nspecies;
   ds.variable = w.var;
   ds.discretisation = w.disc;
   ds.energy = w.energy;
   ds.drag = DragLaw::ConstantK;
-  // Equal bins of identical grains: K_j = K eps_j / eps keeps T_sj = t_s (HPL18 eq. 14).
   ds.k_drag = {w.K / w.nspecies};
-  ds.eps = {eps0 / w.nspecies};
-  if (w.energy == DustEnergy::UTilde) {
-    // u~ = (1 - eps) u (HPL18 sec. 2.1.3).
-    std::vector<Real> ut = s.u;
-    for (auto& q : ut) q *= (1.0 - eps0);
-    s.u = ut;
-    sys.set_particles(s);
-  }
-  sys.set_dust(ds);
-  sys.initialise();
-  return sys;
+  ds.eps = {0.5 / w.nspecies};
+  DustyWave dw;
+  dw.n = w.n;
+  auto sys = dustywave(dw, cfg, ds).make_system();
+  sys->initialise();
+  return std::move(*sys);
 }
 
 }  // namespace mote::sph::testing

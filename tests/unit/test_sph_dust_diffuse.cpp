@@ -23,13 +23,9 @@ using namespace mote::sph;
 double g_rmax = 0.2;
 double g_hfact = 1.2;
 KernelType g_kernel = KernelType::M4;
-constexpr double kEps0 = 0.1, kRc = 0.25, kTs = 0.1;
+constexpr double kEps0 = 0.1, kTs = 0.1;  // eta = t_s c_s^2 = 0.1
 
-double exact_eps(double r, double t) {
-  const double B = kRc * kRc / kEps0, A = kEps0 * std::pow(B, 0.6);
-  const double tau = 10.0 * kTs * t + B;
-  return std::max(0.0, A * std::pow(std::fabs(tau), -0.6) - r * r / tau);
-}
+double exact_eps(double r, double t) { return dustydiffuse_eps(DustyDiffuse{}, kTs, r, t); }
 
 struct DiffuseResult {
   double l2 = 0.0;
@@ -41,33 +37,9 @@ struct DiffuseResult {
 DiffuseResult run_diffuse(int n, DustDiscretisation disc, DustVariable var, int nspecies, double t_end,
                           double c0 = 0.3) {
   SphConfig cfg;
-  cfg.dim = 3;
   cfg.kernel = g_kernel;
   cfg.hfact = g_hfact;
-  cfg.eos = EosType::Isothermal;
   cfg.cs_iso = 1.0;
-  Box box;
-  box.dim = 3;
-  for (int d = 0; d < 3; ++d) {
-    box.lo[d] = -0.5;
-    box.hi[d] = 0.5;
-    box.periodic[d] = true;
-  }
-  const Lattice lat = cubic_lattice(box, 1.0 / n);
-  ParticleSetup s;
-  s.dim = 3;
-  s.x = lat.x;
-  const int np = lat.size();
-  std::vector<Real> eps;
-  for (int i = 0; i < np; ++i) {
-    s.m.push_back(1.0 / np);
-    s.h.push_back(g_hfact * lat.dx);
-    const double r = std::sqrt(lat.x[3 * i] * lat.x[3 * i] + lat.x[3 * i + 1] * lat.x[3 * i + 1] +
-                               lat.x[3 * i + 2] * lat.x[3 * i + 2]);
-    for (int j = 0; j < nspecies; ++j) eps.push_back(exact_eps(r, 0.0) / nspecies);
-  }
-  SphSystem sys(cfg, lat.box);
-  sys.set_particles(s);
   DustSettings ds;
   ds.nspecies = nspecies;
   ds.discretisation = disc;
@@ -75,7 +47,11 @@ DiffuseResult run_diffuse(int n, DustDiscretisation disc, DustVariable var, int 
   ds.drag = DragLaw::ConstantStoppingTime;
   ds.stopping_time = {kTs};
   ds.c_dust = c0;
-  sys.set_dust(ds, eps);
+  DustyDiffuse dd;
+  dd.n = n;
+  auto psys = dustydiffuse(dd, cfg, ds).make_system();
+  SphSystem& sys = *psys;
+  const int np = sys.particles().n;
   sys.initialise();
   const Diagnostics d0 = sys.diagnostics();
   DiffuseResult res;

@@ -26,39 +26,14 @@ struct ShockResult {
   std::vector<double> eps, v, u;
 };
 
-/// x in [-1, 1] periodic (the second interface at +-1 does not reach [-0.5, 0.5]
-/// by t = 0.2), left spacing 0.001 (total density 2), right 0.008 (0.25): equal masses.
+/// PL15 sec. 4.2 through the library set-up (x in [-1, 1] periodic, left
+/// spacing 0.001, right 0.008: equal masses; M4, alpha = 1, beta = 2, alpha_u = 1).
 ShockResult run_dustyshock(DustDiscretisation disc, DustVariable var, int nspecies, double t_end) {
   const double gamma = 5.0 / 3.0, eps0 = 0.5, K = 1000.0;
   const double rhog_l = 1.0, rhog_r = 0.125, p_l = 1.0, p_r = 0.125;
   SphConfig cfg;
-  cfg.dim = 1;
   cfg.kernel = KernelType::M4;
-  cfg.eos = EosType::Adiabatic;
   cfg.gamma = gamma;
-  Box box;
-  box.dim = 1;
-  box.lo[0] = -1.0;
-  box.hi[0] = 1.0;
-  box.periodic[0] = true;
-  const double dxl = 0.001, dxr = 0.008;
-  ParticleSetup s;
-  s.dim = 1;
-  const int nl = 1000, nr = 125;
-  for (int i = 0; i < nl; ++i) {
-    s.x.push_back(-1.0 + (i + 0.5) * dxl);
-    s.m.push_back(rhog_l / (1.0 - eps0) * dxl);
-    s.h.push_back(1.2 * dxl);
-    s.u.push_back(p_l / ((gamma - 1.0) * rhog_l));
-  }
-  for (int i = 0; i < nr; ++i) {
-    s.x.push_back((i + 0.5) * dxr);
-    s.m.push_back(rhog_r / (1.0 - eps0) * dxr);
-    s.h.push_back(1.2 * dxr);
-    s.u.push_back(p_r / ((gamma - 1.0) * rhog_r));
-  }
-  SphSystem sys(cfg, box);
-  sys.set_particles(s);
   DustSettings ds;
   ds.nspecies = nspecies;
   ds.discretisation = disc;
@@ -66,7 +41,8 @@ ShockResult run_dustyshock(DustDiscretisation disc, DustVariable var, int nspeci
   ds.drag = DragLaw::ConstantK;
   ds.k_drag = {K / nspecies};  // equal bins of identical grains
   ds.eps = {eps0 / nspecies};
-  sys.set_dust(ds);
+  auto psys = dustyshock(DustyShock{}, cfg, ds).make_system();
+  SphSystem& sys = *psys;
   sys.initialise();
   const Diagnostics d0 = sys.diagnostics();
   sys.advance_to(t_end);

@@ -3,6 +3,7 @@
 // one-fluid dust method, both discretisations of the dust equation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -21,6 +22,37 @@ struct WaveErrors {
   long long steps = 0;
 };
 
+/// VALIDATION's L2_rel(y) = sqrt(mean((y - y_ref)^2)) / max |y_ref| over the particles.
+struct L2Rel {
+  double sum2 = 0.0, ref_max = 0.0;
+  int n = 0;
+  void add(double y, double ref) {
+    sum2 += (y - ref) * (y - ref);
+    ref_max = std::max(ref_max, std::fabs(ref));
+    ++n;
+  }
+  double value() const { return std::sqrt(sum2 / n) / ref_max; }
+};
+
+constexpr double kGamma = 5.0 / 3.0, kAmp = 1e-4, kWaveK = 2.0 * M_PI;
+
+/// Linear two-fluid solution (gas + pressureless dust with drag K; LP11) from
+/// v_g = v_d = A sin kx, drho_g = drho_d = A sin kx (sin kx = Re[-i e^{ikx}]).
+void two_fluid_solution(double K, double t, Cplx out[4]) {
+  const Cplx mi(0.0, -1.0);
+  const Cplx a0[4] = {kAmp * mi, kAmp * mi, kAmp * mi, kAmp * mi};
+  DustyWaveLinear{1.0, 1.0, 1.0, K, kWaveK}.evolve(a0, t, out);
+}
+
+/// The same wave in the linearised PL15 eq. 10-14 (rho0 = 2, eps0 = 0.5, u0 = 0.9,
+/// t_s = eps (1 - eps) rho / K) from the one-fluid initial state of the set-up.
+DustyWaveTVA tva_model(double K) { return DustyWaveTVA{2.0, 0.5, 0.9, kGamma, 0.5 / K, kWaveK}; }
+void tva_solution(double K, double t, Cplx out[4]) {
+  const Cplx mi(0.0, -1.0);
+  const Cplx b0[4] = {2.0 * kAmp * mi, 0.0, kAmp * mi, 0.6 * kAmp * mi};
+  tva_model(K).evolve(b0, t, out);
+}
+
 WaveErrors run_wave(const DustyWaveSetup& w, double t_end) {
   SphSystem sys = make_dustywave(w);
   const Diagnostics d0 = sys.diagnostics();
@@ -28,47 +60,29 @@ WaveErrors run_wave(const DustyWaveSetup& w, double t_end) {
   const Diagnostics d1 = sys.diagnostics();
   const Snapshot snap = sys.snapshot();
   const DustSnapshot ds = sys.dust()->snapshot(sys.particles());
-  // Linear two-fluid solution: sin(kx) = Re[-i e^{ikx}].
-  const double k = 2.0 * M_PI, amp = 1e-4;
-  DustyWaveLinear lin{1.0, 1.0, 1.0, w.K, k};
   using C = Cplx;
-  const C mi(0.0, -1.0);
-  C a0[4] = {amp * mi, amp * mi, amp * mi, amp * mi}, a1[4];
-  lin.evolve(a0, t_end, a1);
-  double eg = 0, ed = 0, ng = 0, nd = 0;
-  const int nsp = w.nspecies;
+  C a1[4], b1[4];
+  two_fluid_solution(w.K, t_end, a1);
+  tva_solution(w.K, t_end, b1);
+  const C vg_tva = tva_model(w.K).v_gas(b1);
+  L2Rel eg, ed, et;
   for (int i = 0; i < sys.particles().n; ++i) {
-    const double x = snap.x(i, 0);
-    const C ph = std::exp(C(0.0, k * x));
-    const double vg = (a1[2] * ph).real(), vd = (a1[3] * ph).real();
-    double et = 0.0, dvm = 0.0;
-    for (int j = 0; j < nsp; ++j) {
-      et += ds.eps(i, j);
+    const C ph = std::exp(C(0.0, kWaveK * snap.x(i, 0)));
+    double eps = 0.0, dvm = 0.0;
+    for (int j = 0; j < w.nspecies; ++j) {
+      eps += ds.eps(i, j);
       dvm += ds.eps(i, j) * ds.dv(i, j, 0);
     }
-    const double vgn = ds.v_gas(i, 0);
-    const double vdn = vgn + dvm / et;  // barycentric dust velocity (HPL18 eq. 10)
-    eg += (vgn - vg) * (vgn - vg);
-    ng += vg * vg;
-    ed += (vdn - vd) * (vdn - vd);
-    nd += vd * vd;
-  }
-  // Linearised terminal-velocity solution (the scheme's own continuum limit).
-  const double gamma = 5.0 / 3.0, ts = 0.5 * 0.5 * 2.0 / w.K;
-  DustyWaveTVA tva{2.0, 0.5, 0.9, gamma, ts, k};
-  C b0[4] = {2.0 * amp * mi, 0.0, amp * mi, 0.6 * amp * mi}, b1[4];
-  tva.evolve(b0, t_end, b1);
-  const C vg_tva = tva.v_gas(b1);
-  double et = 0.0, nt = 0.0;
-  for (int i = 0; i < sys.particles().n; ++i) {
-    const double vg = (vg_tva * std::exp(C(0.0, k * snap.x(i, 0)))).real();
-    et += (ds.v_gas(i, 0) - vg) * (ds.v_gas(i, 0) - vg);
-    nt += vg * vg;
+    const double vg = ds.v_gas(i, 0);
+    const double vd = vg + dvm / eps;  // barycentric dust velocity (HPL18 eq. 10)
+    eg.add(vg, (a1[2] * ph).real());
+    ed.add(vd, (a1[3] * ph).real());
+    et.add(vg, (vg_tva * ph).real());
   }
   WaveErrors r;
-  r.l2_tva = std::sqrt(et / nt);
-  r.l2_vg = std::sqrt(eg / ng);
-  r.l2_vd = std::sqrt(ed / nd);
+  r.l2_vg = eg.value();
+  r.l2_vd = ed.value();
+  r.l2_tva = et.value();
   r.mass_drift = std::fabs(d1.mass - d0.mass) / d0.mass;
   r.dust_drift = std::fabs(d1.dust_mass - d1.dust_floored - d0.dust_mass) / d0.dust_mass;
   r.mom_drift = std::fabs(d1.momentum[0] - d0.momentum[0]) / d0.mass;  // per unit mass (sum m |v| ~ 1e-4 m)
@@ -81,20 +95,25 @@ const char* name(DustDiscretisation d) {
   return d == DustDiscretisation::SecondDerivatives ? "second derivatives" : "two first derivatives";
 }
 
+// VALIDATION A1 at K = 1000: L2_rel(v_g), L2_rel(v_d) <= 0.02. At K = 100 the
+// ceiling is 0.065, not VALIDATION's 0.06: the continuum equations of the
+// method (PL15 eq. 10-14, HPL18 eq. 26-30) are already 0.064 from the
+// two-fluid solution there (TerminalVelocityModelGap), the scheme converges
+// to them (ConvergesToTerminalVelocitySolution). K = 1 and 10 are reported
+// only: the approximation does not hold there (PL15 sec. 4.1).
 TEST(SphDustWave, AnalyticAtStrongDrag) {
   for (auto disc : {DustDiscretisation::SecondDerivatives, DustDiscretisation::FirstDerivatives}) {
-    for (double K : {100.0, 1000.0}) {
+    for (double K : {1.0, 10.0, 100.0, 1000.0}) {
       DustyWaveSetup w;
       w.K = K;
       w.disc = disc;
       const WaveErrors r = run_wave(w, 4.5);
       std::printf(
-          "[A1 dustywave] %s K = %g: L2_rel(v_g) = %.4f, L2_rel(v_d) = %.4f, vs linear TVA %.4f (%lld steps); drifts "
-          "mass %.1e "
-          "dust %.1e momentum %.1e energy %.1e\n",
+          "[A1 dustywave] %s K = %g: L2_rel(v_g) = %.4f, L2_rel(v_d) = %.4f, L2_rel(v_g) vs linear PL15 eq. 10-14 "
+          "%.4f (%lld steps); drifts mass %.1e dust %.1e momentum %.1e energy %.1e\n",
           name(disc), K, r.l2_vg, r.l2_vd, r.l2_tva, r.steps, r.mass_drift, r.dust_drift, r.mom_drift, r.energy_drift);
-      // Measured with M4, h = 1.2 dx, no AV: 0.086-0.089 (K = 100), 0.027 (K = 1000); see docs/sph_dust.md.
-      const double tol = K == 100.0 ? 0.10 : 0.03;
+      if (K < 100.0) continue;
+      const double tol = K == 100.0 ? 0.065 : 0.02;
       EXPECT_LT(r.l2_vg, tol);
       EXPECT_LT(r.l2_vd, tol);
       EXPECT_LT(r.mass_drift, 1e-12);
@@ -102,6 +121,32 @@ TEST(SphDustWave, AnalyticAtStrongDrag) {
       EXPECT_LT(r.mom_drift, 1e-12);
       EXPECT_LT(r.energy_drift, 1e-6);
     }
+  }
+}
+
+// The linearised PL15 eq. 10-14 against the two-fluid solution, both exact in
+// time: the PdV term of eq. 13 uses div v, not div v_g (PL15 footnote 2), which
+// removes a fraction (gamma - 1) / gamma of the drag damping of the wave (the
+// eigenvalues give decay rates 0.0296 vs 0.0494 at K = 100, ratio 1 / gamma;
+// with div v_g in eq. 13 they agree). At t = 4.5 its amplitude is 9 % (K = 100) and 0.9 %
+// (K = 1000) too large: L2_rel(v_g) = 0.064 and 0.006 at any resolution, the
+// 6 % and 0.6 % that PL15 sec. 4.1 reports for the densities.
+TEST(SphDustWave, TerminalVelocityModelGap) {
+  for (double K : {100.0, 1000.0}) {
+    Cplx a[4], b[4];
+    two_fluid_solution(K, 4.5, a);
+    tva_solution(K, 4.5, b);
+    const Cplx vg = tva_model(K).v_gas(b);
+    L2Rel e;
+    for (int i = 0; i < 1000; ++i) {
+      const Cplx ph = std::exp(Cplx(0.0, kWaveK * (i + 0.5) / 1000.0));
+      e.add((vg * ph).real(), (a[2] * ph).real());
+    }
+    const double ratio = std::abs(vg) / std::abs(a[2]);  // same phase: the decay rates differ
+    std::printf("[A1 model] K = %g: L2_rel(v_g) linear PL15 eq. 10-14 vs two-fluid %.4f; amplitude ratio %.4f\n", K,
+                e.value(), ratio);
+    EXPECT_NEAR(ratio, K == 100.0 ? 1.0906 : 1.0086, 1e-3);
+    EXPECT_NEAR(e.value(), K == 100.0 ? 0.064 : 0.0061, K == 100.0 ? 2e-3 : 3e-4);
   }
 }
 
@@ -182,9 +227,9 @@ TEST(SphDustWave, ConservationVariants) {
   }
 }
 
-// The scheme converges to the linearised terminal-velocity solution (PL15 eq.
-// 10-14); the remaining difference to the two-fluid solution at K = 100
-// (~0.086 at every resolution) is the approximation itself.
+// The scheme converges to the linearised PL15 eq. 10-14 at second order;
+// the difference to the two-fluid solution at K = 100 (0.061-0.063 at 100 and
+// 200 particles) is the model's (TerminalVelocityModelGap).
 TEST(SphDustWave, ConvergesToTerminalVelocitySolution) {
   for (auto var : {DustVariable::Epsilon, DustVariable::SqrtRhoEps}) {
     for (auto disc : {DustDiscretisation::SecondDerivatives, DustDiscretisation::FirstDerivatives}) {
@@ -198,12 +243,14 @@ TEST(SphDustWave, ConvergesToTerminalVelocitySolution) {
         w.var = var;
         const WaveErrors r = run_wave(w, 4.5);
         e[m++] = r.l2_tva;
-        std::printf("[A1 dustywave K = 100, %d particles] %s, %s: L2_rel(v_g) vs linear TVA %.4f, vs two-fluid %.4f\n",
-                    n, var == DustVariable::Epsilon ? "eps" : "S", name(disc), r.l2_tva, r.l2_vg);
+        std::printf(
+            "[A1 dustywave K = 100, %d particles] %s, %s: L2_rel(v_g) vs linear PL15 eq. 10-14 %.4f, vs "
+            "two-fluid %.4f\n",
+            n, var == DustVariable::Epsilon ? "eps" : "S", name(disc), r.l2_tva, r.l2_vg);
       }
-      EXPECT_LT(e[0], 0.03);
-      EXPECT_LT(e[1], 0.01);
-      EXPECT_GT(e[0] / e[1], 2.5);
+      EXPECT_LT(e[0], 0.021);
+      EXPECT_LT(e[1], 0.0065);
+      EXPECT_GT(e[0] / e[1], 3.3);
     }
   }
 }

@@ -26,11 +26,14 @@ enum class DustVariable : int { Epsilon = 0, SqrtRhoEps = 1 };
 enum class DustDiscretisation : int { SecondDerivatives = 0, FirstDerivatives = 1 };
 enum class DustEnergy : int { U = 0, UTilde = 1 };
 enum class DustTimestep : int { Combined = 0, Separate = 1 };
+/// Pair coefficient of PL15 eq. 43: D_a + D_b (paper), or that limited to 2 D of the donor.
+enum class DustFlux : int { Arithmetic = 0, DonorLimited = 1 };
 
 struct DustSettings {
   int nspecies = 1;
   DustVariable variable = DustVariable::Epsilon;
   DustDiscretisation discretisation = DustDiscretisation::SecondDerivatives;
+  DustFlux flux = DustFlux::Arithmetic;  ///< eps variable, direct second derivatives
   DustEnergy energy = DustEnergy::U;
   DragLaw drag = DragLaw::ConstantK;
   std::vector<Real> k_drag{1000.0};      ///< K_j (ConstantK); one value = all species

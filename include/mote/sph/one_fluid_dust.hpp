@@ -46,7 +46,7 @@ class OneFluidDust {
 
   /// Sets eps_j from host data (n x N, row-major) before initialise().
   void set_eps(const std::vector<Real>& eps);
-  /// Converts the initial eps_j into the evolved variable (needs rho).
+  /// Converts the initial eps_j into the evolved variable.
   void initialise(const Particles& p);
 
   /// Leapfrog pieces (see SphSystem::step): var += dt/2 dvar, var_pred = var + dt/2 dvar.
@@ -83,8 +83,10 @@ class OneFluidDust {
   /// positions), dt = C0 of the dust criterion. Returns the number of steps.
   int advance_dust_only(SphSystem& sys, Real t_end);
 
-  /// The evolved variable and its predicted value / time derivative (n x N).
-  RealView2 var, var_pred, dvar;
+  /// The evolved variable and its predicted value / time derivative (n x N):
+  /// eps_j, or for the S variable q_j = S_j / sqrt(rho) = sqrt(eps_j) (HPL18 eq. 51
+  /// with its compression term integrated exactly; S_j = sqrt(rho) q_j in s_pairs).
+  RealView2 var, var_pred, dvar, s_pairs;
   /// Per-particle drag data: T_sj (n x N) and the pair coefficient C_j (n x N):
   /// D_j = eps_j tilde T_sj (eps variable) or tilde T_sj (S variable).
   RealView2 ts, coef;

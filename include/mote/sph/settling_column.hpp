@@ -1,0 +1,48 @@
+// Vertical column of a protoplanetary disc for the dust settling test (PL15
+// sec. 4.4.1, eq. 53-57; HPL18 sec. 4.3.1; VALIDATION A5-A6), shared by
+// problems/sph_dustsettle and the unit tests: a 2D (x, z) slab, x periodic
+// over [-0.25, 0.25], z in [-3H, 3H] free, isothermal with c_s = H Omega0,
+// vertical gravity a_z = -z GM / (R0^2 + z^2)^(3/2) (eq. 53), a hexagonal
+// lattice of nx particles across x stretched to rho0 exp(-z^2 / 2H^2)
+// (eq. 54-55) with equal masses, relaxed gas-only with the damping of eq. 56
+// (and the configured viscosity) before the dust is added.
+#pragma once
+
+#include <memory>
+
+#include "mote/core/kokkos_types.hpp"
+#include "mote/sph/box.hpp"
+#include "mote/sph/config.hpp"
+#include "mote/sph/sph_system.hpp"
+
+namespace mote::sph {
+
+struct SettlingColumn {
+  int nx = 32;  ///< particles across x (32: the 32 x 111 column)
+  Real gm = 1.0, r0 = 5.0, h_over_r = 0.05, rho0 = 1e-3;
+  Real relax_time = 1000.0, relax_damping = 0.03;
+
+  Real omega() const;              ///< Omega0 = sqrt(GM / R0^3)
+  Real scale_height() const;       ///< H = (H / R) R0
+  Real sound_speed() const;        ///< c_s = H Omega0
+  Real orbit() const;              ///< 2 pi / Omega0 (70.2 in code units)
+  Real gas_density(Real z) const;  ///< rho0 exp(-z^2 / 2H^2) (eq. 55)
+};
+
+/// The relaxed gas: configuration (2D, isothermal with c_s, no damping), box
+/// and particles (positions, velocities and h after the relaxation).
+struct RelaxedColumn {
+  SettlingColumn column;
+  SphConfig cfg;
+  Box box;
+  ParticleSetup particles;
+
+  /// A system with these particles and the vertical gravity; dust not yet set.
+  std::unique_ptr<SphSystem> make_system() const;
+};
+
+/// Sets up the lattice and relaxes it gas-only to c.relax_time; cfg supplies
+/// the kernel, h_fact and viscosity (its eos, c_s and damping are replaced).
+RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg);
+
+}  // namespace mote::sph

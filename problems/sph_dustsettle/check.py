@@ -1,0 +1,273 @@
+#!/usr/bin/env python3
+"""Check (and plot) an sph_dustsettle run against the 1D solutions of HPL18 app. A.
+
+    check.py RUN_DIR [--plot FILE.png] [--orbits 10 20 30 40] [--front-tol 0.05]
+             [--mass-tol 1e-5] [--unfloored-tol 1e-12] [--table2]
+
+References, computed here from the resolved deck (independent of the C++ code):
+  * gas: the static isothermal column in hydrostatic equilibrium with eq. 53 of
+    PL15, rho_g ~ exp(-(GM/c_s^2)(1/R0 - 1/sqrt(R0^2 + z^2))), with the column
+    mass of the set-up (eq. 55 integrated over [-3H, 3H]); no back-reaction;
+  * Stokes number St_j(z) = t_s Omega0 with the Epstein time of the gas,
+    t_s = rho_grain s sqrt(pi/8) / (rho_g c_s) (PL15 eq. 20; HPL18 eq. 12-14);
+  * analytic dust velocity, HPL18 eq. A5: v = St z/(1 + z^2)^(3/2) (exp(-t/St) - 1)
+    (dimensionless: v / v_K, z / R0, t Omega0);
+  * numerical 1D solution of eq. A3-A4 (dust continuity and momentum with drag
+    and gravity in the static gas): implicit (backward Euler) upwind finite
+    volumes on [0, 3H] (symmetric), v = 0 at the mid-plane and at 3H (the
+    boundary condition of app. A2); both equations are bidiagonal and are
+    solved exactly every step.
+Metrics:
+  * A5: the settling front, where rho_d falls to half its mid-plane value, for
+    SPH from rho_d = eps rho on the particles averaged in |z| bins of width
+    1.6 H / nx (linear interpolation between bins); for the reference the edge
+    of the settled layer, i.e. the dust starting at rest at 3H followed along
+    its characteristic (eq. A2; the first-order grid solution smears that edge
+    outwards by ~4 % at 30 orbits and is printed alongside);
+    |front / reference - 1| <= --front-tol at --orbits;
+  * A5/A7: dust mass from history.txt, after the negative-eps floor
+    (dust_mass, <= --mass-tol) and before it (dust_mass_unfloored, <= --unfloored-tol);
+  * A6 (--table2, N = 10 power-law run): per-species L2 error of rho_d on the
+    particles against the 1D solution, normalised by the maximum of the
+    reference (our reading of SPLASH's L2 in HPL18 Table 2), at the last
+    snapshot; each must not exceed the Table 2 density column.
+Prints PASS/FAIL lines and a final PASS or FAIL; exits non-zero on failure.
+"""
+import argparse
+import os
+import sys
+import tomllib
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import mote  # noqa: E402
+
+# HPL18 Table 2, L2 density errors (column 2) for the sizes of Table 1.
+TABLE2 = [4.93e-3, 4.90e-3, 4.81e-3, 5.10e-3, 5.06e-3, 6.44e-2, 1.24e-2, 3.44e-2, 7.89e-2, 9.43e-2]
+
+
+class Column:
+    """Parameters of the run (code units) from the resolved deck."""
+
+    def __init__(self, snap):
+        deck = tomllib.loads(snap.deck)
+        st, du = deck["settle"], deck["dust"]
+        self.r0, self.hr, self.rho0, self.nx = st["R0"], st["H_over_R"], st["rho0"], st["nx"]
+        self.gm = 1.0
+        self.omega = np.sqrt(self.gm / self.r0**3)
+        self.H = self.hr * self.r0
+        self.cs = self.H * self.omega
+        self.orbit = 2 * np.pi / self.omega
+        sizes, eps = power_law(du) if du["sizes_from"] == "power_law" else (du["sizes"], du["eps"])
+        n = du["species"]
+        self.sizes = np.resize(np.asarray(sizes, float), n)
+        self.eps = np.resize(np.asarray(eps, float), n)
+        rho_grain = du["rho_grain"]
+        if st["grain_units"] == "cgs":
+            u = snap.units
+            self.sizes = self.sizes / u["length_cm"]
+            rho_grain = rho_grain / (u["mass_g"] / u["length_cm"] ** 3)
+        self.rho_eff = rho_grain * np.sqrt(np.pi / 8)
+        # Static hydrostatic gas of eq. 53 with the set-up's column mass (eq. 55 over [-3H, 3H]).
+        zq = np.linspace(0.0, 3 * self.H, 20001)
+        shape = np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + zq**2)))
+        gauss = self.rho0 * np.exp(-zq**2 / (2 * self.H**2))
+        self.rhog_mid = np.trapz(gauss, zq) / np.trapz(shape, zq) * (1 - self.eps.sum())
+
+    def rho_gas(self, z):
+        return self.rhog_mid * np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + z**2)))
+
+    def stokes(self, j, z):
+        return self.rho_eff * self.sizes[j] / (self.rho_gas(z) * self.cs) * self.omega
+
+    def velocity_a5(self, j, z, t):
+        """HPL18 eq. A5 in code units."""
+        zb, tb, st = z / self.r0, t * self.omega, self.stokes(j, z)
+        return st * zb / (1 + zb**2) ** 1.5 * np.expm1(-tb / st) * np.sqrt(self.gm / self.r0)
+
+    def top_edge(self, j, t_end, dtbar=0.002):
+        """Height of the dust that starts at rest at 3H: eq. A2 along its characteristic (implicit drag).
+        The settled layer stays within a factor 2 of its mid-plane density, so this is the front."""
+        z, v, t, dt = 3 * self.H, 0.0, 0.0, dtbar / self.omega
+        while t < t_end:
+            h = min(dt, t_end - t)
+            ts = self.stokes(j, z) / self.omega
+            v = (v - h * self.gm * z / (self.r0**2 + z**2) ** 1.5) / (1 + h / ts)
+            z, t = z + h * v, t + h
+        return z
+
+    def solve_1d(self, j, times, ncell=3000, dtbar=0.02):
+        """rho_d(z) on cell centres at `times` (eq. A3-A4, implicit upwind)."""
+        dz = 3 * self.H / ncell
+        zc = (np.arange(ncell) + 0.5) * dz
+        zf = np.arange(ncell + 1) * dz
+        rho = self.eps[j] / (1 - self.eps.sum()) * self.rho_gas(zc)
+        v = np.zeros(ncell + 1)
+        tinv = 1.0 / (self.stokes(j, zf) / self.omega)
+        g = self.gm * zf / (self.r0**2 + zf**2) ** 1.5
+        dt = dtbar / self.omega
+        out, t = [], 0.0
+        ab = np.zeros((2, ncell))
+        for t_out in sorted(times):
+            while t < t_out * (1 - 1e-12):
+                h = min(dt, t_out - t)
+                vt = np.minimum(v, 0.0)  # advecting velocity (known, HPL18 app. A2)
+                # Momentum at the inner faces 1..ncell-1: upwind from the face above.
+                a = 1 / h - vt[1:-1] / dz + tinv[1:-1]
+                up = np.append(vt[1:-2] / dz, 0.0)  # coefficient of v_{f+1}; v_ncell = 0
+                ab[0, 1:ncell - 1], ab[1, :ncell - 1] = up[:-1], a
+                vn = np.zeros(ncell + 1)
+                vn[1:-1] = solve_banded((0, 1), ab[:, :ncell - 1], v[1:-1] / h - g[1:-1])
+                v = vn
+                # Continuity: flux through face f = v_f rho(cell above), v_0 = v_ncell = 0.
+                ab[0, 1:] = v[1:-1] * h / dz
+                ab[1, :] = 1 - v[:-1] * h / dz
+                rho = solve_banded((0, 1), ab, rho)
+                t += h
+            out.append(rho.copy())
+        return zc, out
+
+
+def power_law(du):
+    """HPL18 sec. 4.3.1 / eq. 63: log cell edges, s_j = sqrt(edge product), eps_j from the integral."""
+    n, p = du["species"], du["p"]
+    edges = np.logspace(np.log10(du["s_min"]), np.log10(du["s_max"]), n + 1)
+    k = 4 - p
+    w = (edges[1:] ** k - edges[:-1] ** k) / k if abs(k) > 1e-12 else np.log(edges[1:] / edges[:-1])
+    return np.sqrt(edges[1:] * edges[:-1]), du["eps_total"] * w / w.sum()
+
+
+def front(z, f):
+    """First |z| where f falls below half its first value (linear interpolation)."""
+    half = 0.5 * f[0]
+    i = int(np.argmax(f < half))
+    if i == 0:
+        return z[-1]
+    return z[i - 1] + (f[i - 1] - half) / (f[i - 1] - f[i]) * (z[i] - z[i - 1])
+
+
+def sph_profile(az, rho_d, dz, zmax):
+    nb = int(zmax / dz) + 1
+    b = np.minimum((az / dz).astype(int), nb - 1)
+    s, c = np.bincount(b, rho_d, nb), np.bincount(b, None, nb)
+    ok = c > 0
+    return ((np.arange(nb) + 0.5) * dz)[ok], s[ok] / c[ok]
+
+
+def load(path):
+    import h5py
+
+    snap = mote.read_snapshot(path)
+    with h5py.File(path) as f:
+        z = f["particles/position"][:, 1]
+        rho = f["particles/density"][...]
+        eps = f["particles/dust_fraction"][...].reshape(len(z), -1)
+        v, vg = f["particles/velocity"][:, 1], f["particles/gas_velocity"][:, 1]
+    return snap, z, rho, eps, v, vg
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--plot")
+    ap.add_argument("--orbits", type=float, nargs="*", default=[10, 20, 30, 40])
+    ap.add_argument("--front-tol", type=float, default=0.05)
+    ap.add_argument("--mass-tol", type=float, default=1e-5)
+    ap.add_argument("--unfloored-tol", type=float, default=1e-12)
+    ap.add_argument("--table2", action="store_true")
+    args = ap.parse_args()
+    files = mote.list_snapshots(args.run_dir)
+    snaps = [load(p) for p in files]
+    col = Column(snaps[0][0])
+    times = np.array([s[0].time for s in snaps])
+    ok = True
+
+    def check(cond, text):
+        nonlocal ok
+        ok = ok and bool(cond)
+        print(("PASS " if cond else "FAIL ") + text)
+
+    dz = 1.6 * col.H / col.nx
+    picks = [int(np.argmin(abs(times - o * col.orbit))) for o in args.orbits]
+    fronts = []
+    if picks:
+        zc, ref = col.solve_1d(int(np.argmax(col.eps)), [times[k] for k in picks])
+        for o, k, r in zip(args.orbits, picks, ref):
+            snap, z, rho, eps, _, _ = snaps[k]
+            zs, fs = sph_profile(np.abs(z), eps.sum(axis=1) * rho, dz, 3 * col.H)
+            f_sph, f_ref = front(zs, fs), col.top_edge(int(np.argmax(col.eps)), times[k])
+            fronts.append((o, f_sph, f_ref, zs, fs, zc, r))
+            check(abs(f_sph / f_ref - 1) <= args.front_tol,
+                  f"A5 front at {o:g} orbits: SPH {f_sph / col.H:.4f} H, 1D reference {f_ref / col.H:.4f} H "
+                  f"(grid solution {front(zc, r) / col.H:.4f} H), ratio {f_sph / f_ref:.4f} (tolerance {args.front_tol:g})")
+    hist = mote.read_history(os.path.join(args.run_dir, "history.txt"))
+    m0 = hist["dust_mass"][0]
+    drift = abs(hist["dust_mass"][-1] - m0) / m0
+    drift_u = abs(hist["dust_mass_unfloored"][-1] - m0) / m0
+    check(drift <= args.mass_tol, f"dust mass after the floor: relative drift {drift:.2e} (<= {args.mass_tol:g})")
+    check(drift_u <= args.unfloored_tol, f"dust mass before the floor: relative drift {drift_u:.2e} (<= {args.unfloored_tol:g})")
+    snap, z, rho, eps, v, vg = snaps[-1]
+    zc, refs, l2 = [], [], []
+    for j in range(len(col.eps)):
+        zj, (rj,) = col.solve_1d(j, [snap.time])
+        r = np.interp(np.abs(z), zj, rj)
+        l2.append(np.sqrt(np.mean((eps[:, j] * rho - r) ** 2)) / rj.max())
+        zc.append(zj)
+        refs.append(rj)
+    print(f"t = {snap.time / col.orbit:.2f} orbits, L2 density error per species / max(reference): "
+          + " ".join(f"{e:.2e}" for e in l2))
+    if args.table2:
+        check(len(l2) == len(TABLE2) and all(e <= c for e, c in zip(l2, TABLE2)),
+              "A6: every species within HPL18 Table 2 (density column)")
+    # Dust velocity of the single (or largest) species against eq. A5 where it holds dust.
+    j = len(col.eps) - 1
+    e_tot = eps.sum(axis=1)
+    sel = (eps[:, j] > 0.1 * col.eps[j]) & (np.abs(z) < 3 * col.H)
+    v_dust = vg + (v - vg) / np.maximum(e_tot, 1e-300) if len(col.eps) == 1 else None
+    if v_dust is not None and sel.any():
+        va5 = col.velocity_a5(j, z[sel], snap.time)
+        l2v = np.sqrt(np.mean((v_dust[sel] - va5) ** 2)) / np.abs(va5).max()
+        print(f"dust velocity vs HPL18 eq. A5 at t = {snap.time / col.orbit:.2f} orbits: L2 / max = {l2v:.2e}")
+    if args.plot:
+        plot(args.plot, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel)
+    print("PASS" if ok else "FAIL")
+    return 0 if ok else 1
+
+
+def plot(path, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for o, f_sph, f_ref, zs, fs, zr, r in fronts:
+        (line,) = axes[0].plot(zs / col.H, fs, ".", ms=4, label=f"SPH {o:g} orbits")
+        axes[0].plot(zr / col.H, r, "-", color=line.get_color(), lw=1)
+        axes[0].axvline(f_ref / col.H, color=line.get_color(), lw=0.5, ls=":")
+    axes[0].set(xlim=(0, 1.5), xlabel="|z| / H", ylabel="rho_d (code)", title="A5: SPH (bins) vs 1D solution (lines)")
+    if fronts:
+        axes[0].legend(fontsize=7)
+    for j in range(len(col.eps)):
+        (line,) = axes[1].semilogy(np.abs(z) / col.H, np.maximum(eps[:, j] * rho, 1e-30), ".", ms=1)
+        axes[1].semilogy(zc[j] / col.H, np.maximum(refs[j], 1e-30), "-", color=line.get_color(), lw=1)
+    top = max(r.max() for r in refs)
+    axes[1].set(xlim=(0, 3), ylim=(1e-6 * top, 3 * top), xlabel="|z| / H", ylabel="rho_d,j",
+                title=f"particles vs 1D solution, {snap.time / col.orbit:.1f} orbits")
+    if v_dust is not None and sel.any():
+        zz = np.linspace(-3 * col.H, 3 * col.H, 601)
+        axes[2].plot(z[sel] / col.H, v_dust[sel], ".", ms=2, label="SPH v_g + Dv")
+        axes[2].plot(zz / col.H, col.velocity_a5(len(col.eps) - 1, zz, snap.time), "-", label="HPL18 eq. A5")
+        axes[2].set(xlabel="z / H", ylabel="v_z,dust (code)", title="dust velocity")
+        axes[2].legend(fontsize=7)
+    axes[0].set_visible(bool(fronts))
+    axes[2].set_visible(v_dust is not None and sel.any())
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
