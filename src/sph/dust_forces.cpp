@@ -4,7 +4,8 @@
 //                       HPL18 eq. 31-32), T_sj and tilde T_sj (HPL18 eq. 14-17).
 //   sph::dust_forces    momentum (PL15 eq. 25), AV with (1 - eps_a) (eq. 31-32),
 //                       conductivity / (1 - eps_a) (eq. 34-35), du/dt (eq. 27 / 45,
-//                       HPL18 eq. 55-56) and, for direct second derivatives, the dust
+//                       HPL18 eq. 55-56; with dust.pdv = "gas" the div v_g + drag heating
+//                       term as PL15 eq. 43 with D' = P D / rho_g) and, for direct second derivatives, the dust
 //                       equation PL15 eq. 43 (eps_j, D_j = eps_j tilde T_sj; optionally with the
 //                       pair coefficient limited to 2 D of the donor, so eps_j >= 0) or HPL18
 //                       eq. 51 (S_j, stored as S_j / sqrt(rho)).
@@ -39,7 +40,8 @@ enum DustSlot : int {
   kRho = 17,
   kDtot = 18,  // sum_j eps_j tilde T_sj
   kRpf2 = 19,  // 1 / (Omega rho^2)
-  kPackSize = 20
+  kDgas = 20,  // P sum_j eps_j tilde T_sj / rho_g  (dust.pdv = "gas")
+  kPackSize = 21
 };
 
 template <int Dim, class K>
@@ -53,6 +55,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
   const bool limited = st.flux == DustFlux::DonorLimited;
   const bool energy = cfg.eos == EosType::Adiabatic;
   const bool utilde = energy && st.energy == DustEnergy::UTilde;
+  const bool gas_pdv = energy && st.pdv == DustPdV::Gas;
   const Real gamma = cfg.gamma;
   const Real gamma_drag = energy ? cfg.gamma : 1.0;
   const Real cs0 = cfg.cs_iso;
@@ -169,11 +172,12 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         pk(i, kRho) = rho(i);
         pk(i, kDtot) = d_tot(i);
         pk(i, kRpf2) = rpf / rho(i);
+        pk(i, kDgas) = P(i) * d_tot(i) / ((1.0 - eps_tot(i)) * rho(i));
       });
 
   par_for(
       "sph::dust_forces", 0, n, KOKKOS_LAMBDA(int a) {
-        Real du_d = 0.0, sumc = 0.0;
+        Real du_d = 0.0, du_w = 0.0, sumc = 0.0;
         HydroSums sum(pk(a, kCs));
         if (second)
           for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
@@ -194,7 +198,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         }
         const Real ha = pk(a, kH), ha_inv = 1.0 / ha;
         const Real rpfa = pk(a, kRpf);
-        const Real ua = pk(a, kU), Pa = pk(a, kP), rhoa = pk(a, kRho), dta = pk(a, kDtot);
+        const Real ua = pk(a, kU), Pa = pk(a, kP), rhoa = pk(a, kRho), dta = pk(a, kDtot), dga = pk(a, kDgas);
         // AV with (1 - eps): PL15 eq. 31 / HPL18 eq. 57; (1 - eps_a) du/dt: PL15 eq. 27 first term.
         const HydroSide sa{pk(a, kPpf), pk(a, kRpfAv), pk(a, kAcs), rpfa, ua, pk(a, kCs)};
         const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
@@ -211,6 +215,10 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           const HydroSide sb{pk(b, kPpf), pk(b, kRpfAv), pk(b, kAcs), pk(b, kRpf), ub, pk(b, kCs)};
           const Real mb = pk(b, kM);
           sum.add(g, inside, sa, sb, mb, beta, alpha_u, energy);
+          if (gas_pdv) {
+            // (1 - eps_a) du_a/dt += (1/rho) div(D' grad P), D' = P D / rho_g, in the form of PL15 eq. 43.
+            du_w += mb / (rhoa * pk(b, kRho)) * (Pa - pk(b, kP)) * 0.5 * (g.fa + g.fb) * g.rinv * (dga + pk(b, kDgas));
+          }
           if (second) {
             const Real rhob = pk(b, kRho);
             const Real fbar_r = 0.5 * (g.fa + g.fb) * g.rinv;
@@ -256,7 +264,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           gforce(a, d) = -sum.acc[d];
         }
         const Real fg = 1.0 - eps_tot(a);
-        dudt(a) = energy ? (utilde ? sum.du : (sum.du + du_d) / fg) : 0.0;
+        dudt(a) = energy ? (utilde ? sum.du + du_w : (sum.du + du_d + du_w) / fg) : 0.0;
         divv(a) = sum.dv * rpfa;
         vsig(a) = sum.vs;
       });

@@ -35,6 +35,10 @@ void DustSettings::declare(core::DeckSchema& s) {
       .default_value(std::string("u"))
       .one_of({"u", "u_tilde"})
       .doc("Evolve u (PL15 eq. 27/45, HPL18 eq. 56) or u~ = (1 - eps) u (HPL18 eq. 55).");
+  s.string("dust.pdv")
+      .default_value(std::string("barycentric"))
+      .one_of({"barycentric", "gas"})
+      .doc("PdV work with div v (PL15 eq. 13) or div v_g + drag heating (energy-conserving form).");
   s.string("dust.drag")
       .default_value(std::string("constant_K"))
       .one_of({"constant_K", "epstein", "constant_ts"})
@@ -82,6 +86,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
                                                                              : DustDiscretisation::FirstDerivatives;
   s.flux = d.string("dust.flux") == "donor_limited" ? DustFlux::DonorLimited : DustFlux::Arithmetic;
   s.energy = d.string("dust.energy") == "u" ? DustEnergy::U : DustEnergy::UTilde;
+  s.pdv = d.string("dust.pdv") == "gas" ? DustPdV::Gas : DustPdV::Barycentric;
   const std::string drag = d.string("dust.drag");
   s.drag = drag == "constant_K" ? DragLaw::ConstantK
                                 : (drag == "epstein" ? DragLaw::Epstein : DragLaw::ConstantStoppingTime);

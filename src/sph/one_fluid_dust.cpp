@@ -121,13 +121,18 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
   const Real c0 = s_.c_dust;
   const Real ccour = cfg.c_cour;
   const bool combined = s_.timestep == DustTimestep::Combined;
+  // The diffusion rate of the coupled (eps, u) system is (gamma - 1) D u = D c_s^2 / gamma with
+  // PL15's div v, but D c_s^2 with the gas PdV (dust.pdv = "gas", whose energy term diffuses u
+  // as well): the diffusion part of eq. 44 / 16 is then scaled by gamma to keep PL15's margin
+  // (the K = 1 dustywave is unstable at C0 = 0.25 without it).
+  const Real dscale = (cfg.eos == EosType::Adiabatic && s_.pdv == DustPdV::Gas) ? cfg.gamma : 1.0;
   Real dt = 1e300;
   par_reduce(
       "sph::dust_timestep", 0, p.n,
       KOKKOS_LAMBDA(int a, Real& dmin) {
         if (type(a) != kGas) return;
-        const Real d =
-            combined ? dt_dust_combined(c0, h(a), cs(a), e(a), ets(a)) : dt_dust_diffusion(c0, h(a), cs(a), ets(a));
+        const Real d = combined ? dt_dust_combined(c0, h(a), cs(a), e(a), dscale * ets(a))
+                                : dt_dust_diffusion(c0, h(a), cs(a), dscale * ets(a));
         dmin = d < dmin ? d : dmin;
       },
       Kokkos::Min<Real>(dt));

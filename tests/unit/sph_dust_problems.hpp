@@ -79,6 +79,7 @@ struct DustyWaveLinear {
 /// amplitudes of (drho, deps, v, du); the solution the SPH scheme converges to.
 struct DustyWaveTVA {
   double rho0, eps0, u0, gamma, ts, k;
+  bool gas_pdv = false;  ///< eq. 13 with div v_g + drag heating (dust.pdv = "gas")
   void evolve(const Cplx a0[4], double t, Cplx out[4]) const {
     const Cplx I(0.0, 1.0);
     const double P0 = (gamma - 1.0) * (1.0 - eps0) * rho0 * u0;
@@ -90,6 +91,9 @@ struct DustyWaveTVA {
     for (int j = 0; j < 4; ++j) M[2][j] = -I * k * dp[j] / rho0;             // eq. 11
     for (int j = 0; j < 4; ++j) M[1][j] = k * k * eps0 * ts * dp[j] / rho0;  // eq. 12
     M[3][2] = -I * k * P0 / ((1.0 - eps0) * rho0);                           // eq. 13 (linear part)
+    // Gas PdV: (1 - eps) du/dt += (1 / rho) div(D' grad P), D' = P eps t_s / rho_g.
+    const double dgas = gas_pdv ? eps0 * ts * P0 / ((1.0 - eps0) * (1.0 - eps0) * rho0 * rho0) : 0.0;
+    for (int j = 0; j < 4; ++j) M[3][j] += -k * k * dgas * dp[j];
     expm_apply(M, t, a0, out);
   }
   /// v_g = v - eps Dv, Dv = t_s grad P / rho_g (PL15 eq. 6, 9).
@@ -110,6 +114,7 @@ struct DustyWaveSetup {
   DustDiscretisation disc = DustDiscretisation::SecondDerivatives;
   DustVariable var = DustVariable::Epsilon;
   DustEnergy energy = DustEnergy::U;
+  DustPdV pdv = DustPdV::Barycentric;
   double alpha = 0.0;  ///< linear wave: no shock capturing (AV damps the wave)
   double alpha_u = 0.0;
   KernelType kernel = KernelType::M4;
@@ -131,6 +136,7 @@ inline SphSystem make_dustywave(const DustyWaveSetup& w) {
   ds.variable = w.var;
   ds.discretisation = w.disc;
   ds.energy = w.energy;
+  ds.pdv = w.pdv;
   ds.drag = DragLaw::ConstantK;
   ds.k_drag = {w.K / w.nspecies};
   ds.eps = {0.5 / w.nspecies};

@@ -143,7 +143,8 @@ TEST(SphDustLaws, DeckTable) {
   DustSettings::declare(schema);
   const auto d = mote::core::Deck::parse(
       "[dust]\nspecies = 10\ndrag = \"epstein\"\nsizes_from = \"power_law\"\nrho_grain = 3.0\n"
-      "discretisation = \"first_derivatives\"\nvariable = \"sqrt_rho_eps\"\nenergy = \"u_tilde\"\n",
+      "discretisation = \"first_derivatives\"\nvariable = \"sqrt_rho_eps\"\nenergy = \"u_tilde\"\n"
+      "pdv = \"gas\"\n",
       "t.toml", schema);
   const DustSettings s = DustSettings::from_deck(d);
   EXPECT_EQ(s.nspecies, 10);
@@ -151,11 +152,13 @@ TEST(SphDustLaws, DeckTable) {
   EXPECT_EQ(s.discretisation, DustDiscretisation::FirstDerivatives);
   EXPECT_EQ(s.variable, DustVariable::SqrtRhoEps);
   EXPECT_EQ(s.energy, DustEnergy::UTilde);
+  EXPECT_EQ(s.pdv, DustPdV::Gas);
   ASSERT_EQ(s.sizes.size(), 10u);
   EXPECT_NEAR(s.sizes[0] / 1e-5, 1.0, 5e-3);
   EXPECT_NEAR(s.eps[9] / 3.99e-3, 1.0, 5e-3);
   const auto bad = mote::core::Deck::parse("[dust]\nspecies = 3\nK = [1.0, 2.0]\n", "t.toml", schema);
   EXPECT_THROW(DustSettings::from_deck(bad), std::invalid_argument);
+  EXPECT_ANY_THROW(mote::core::Deck::parse("[dust]\npdv = \"total\"\n", "t.toml", schema));
 }
 
 }  // namespace

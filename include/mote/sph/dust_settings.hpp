@@ -3,7 +3,8 @@
 // S_j = sqrt(rho eps_j), PL15 app. B / HPL18 eq. 51), discretisation of the
 // dust diffusion equation (two first derivatives, PL15 eq. 26, 29-30; direct
 // second derivatives, PL15 eq. 43 / HPL18 eq. 51), energy variable (u, PL15
-// eq. 27/45 and HPL18 eq. 56; u~ = (1 - eps) u, HPL18 eq. 55), drag law
+// eq. 27/45 and HPL18 eq. 56; u~ = (1 - eps) u, HPL18 eq. 55), the velocity
+// of the PdV work (PL15 eq. 13: div v; or div v_g with drag heating), drag law
 // (constant K_j, Epstein, constant t_s; PL15 eq. 19-20, HPL18 eq. 12-17),
 // grain sizes from a list or the power law of HPL18 eq. 63, and the
 // time-step criterion (HPL18 eq. 44 or PL15 eq. 16).
@@ -26,6 +27,9 @@ enum class DustVariable : int { Epsilon = 0, SqrtRhoEps = 1 };
 enum class DustDiscretisation : int { SecondDerivatives = 0, FirstDerivatives = 1 };
 enum class DustEnergy : int { U = 0, UTilde = 1 };
 enum class DustTimestep : int { Combined = 0, Separate = 1 };
+/// PdV work of the gas: div v (PL15 eq. 13, footnote 2) or div v_g plus drag heating
+/// (LP14a's first-order form), rho_g du/dt += div(P D grad P / rho_g), see one_fluid_dust.hpp.
+enum class DustPdV : int { Barycentric = 0, Gas = 1 };
 /// Pair coefficient of PL15 eq. 43: D_a + D_b (paper), or that limited to 2 D of the donor.
 enum class DustFlux : int { Arithmetic = 0, DonorLimited = 1 };
 
@@ -35,6 +39,7 @@ struct DustSettings {
   DustDiscretisation discretisation = DustDiscretisation::SecondDerivatives;
   DustFlux flux = DustFlux::Arithmetic;  ///< eps variable, direct second derivatives
   DustEnergy energy = DustEnergy::U;
+  DustPdV pdv = DustPdV::Barycentric;
   DragLaw drag = DragLaw::ConstantK;
   std::vector<Real> k_drag{1000.0};      ///< K_j (ConstantK); one value = all species
   std::vector<Real> sizes{1.0};          ///< s_j (Epstein), code length

@@ -12,6 +12,11 @@
 //   the matching energy equations (PL15 eq. 27, 45; HPL18 eq. 55-56) that conserve
 //   E = sum m (v^2/2 + (1 - eps) u) (PL15 eq. 40, HPL18 eq. 52) exactly in the
 //   semi-discrete sense;
+//   optionally (dust.pdv = "gas") the PdV work with div v_g instead of div v (PL15
+//   footnote 2) plus the drag heating D |grad P|^2 / rho_g^2: together
+//   rho_g du/dt += div(P D grad P / rho_g), w = v_g - v = -D grad P / rho_g,
+//   D = sum_j eps_j tilde T_sj; discretised as PL15 eq. 43 with D'_a = P_a D_a / rho_g,a
+//   (antisymmetric in a, b: E stays exactly conserved) in the force loop;
 //   the time-step HPL18 eq. 44 (or PL15 eq. 16), with a warning when eps T_s exceeds the
 //   Courant time (PL15 eq. 18);
 //   the negative-eps floor of PL15 sec. 4.4.2 with the removed dust mass accounted.
