@@ -54,7 +54,8 @@ H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm) : pat
   else
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   if (file_ < 0)
-    throw std::runtime_error("cannot " + std::string(mode == Mode::Create ? "create" : "open") + " HDF5 file '" + path + "'");
+    throw std::runtime_error("cannot " + std::string(mode == Mode::Create ? "create" : "open") + " HDF5 file '" + path +
+                             "'");
 }
 
 H5File::~H5File() {
@@ -68,7 +69,8 @@ void H5File::create_group(const std::string& path) {
     const size_t end = path.find('/', start);
     partial = path.substr(0, end == std::string::npos ? path.size() : end);
     if (!partial.empty() && partial != "/" && !exists(partial)) {
-      Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create group " + partial),
+      Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                        "create group " + partial),
                H5Gclose);
     }
     if (end == std::string::npos) break;
@@ -146,25 +148,32 @@ std::vector<hsize_t> H5File::dims(const std::string& name) const {
 }
 
 void H5File::write(const std::string& n, const Block& b, const double* d) { write_impl(n, b, H5T_NATIVE_DOUBLE, d); }
-void H5File::write(const std::string& n, const Block& b, const std::int64_t* d) { write_impl(n, b, H5T_NATIVE_INT64, d); }
-void H5File::write(const std::string& n, const Block& b, const std::int32_t* d) { write_impl(n, b, H5T_NATIVE_INT32, d); }
+void H5File::write(const std::string& n, const Block& b, const std::int64_t* d) {
+  write_impl(n, b, H5T_NATIVE_INT64, d);
+}
+void H5File::write(const std::string& n, const Block& b, const std::int32_t* d) {
+  write_impl(n, b, H5T_NATIVE_INT32, d);
+}
 void H5File::read(const std::string& n, const Block& b, double* d) const { read_impl(n, b, H5T_NATIVE_DOUBLE, d); }
 void H5File::read(const std::string& n, const Block& b, std::int64_t* d) const { read_impl(n, b, H5T_NATIVE_INT64, d); }
 void H5File::read(const std::string& n, const Block& b, std::int32_t* d) const { read_impl(n, b, H5T_NATIVE_INT32, d); }
 
 namespace {
 
-void write_attr(hid_t file, const std::string& object, const std::string& name, hid_t type, hid_t space, const void* data) {
+void write_attr(hid_t file, const std::string& object, const std::string& name, hid_t type, hid_t space,
+                const void* data) {
   Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object), H5Oclose);
   if (H5Aexists(obj, name.c_str()) > 0) check(H5Adelete(obj, name.c_str()), "delete attribute " + name);
-  Handle attr(check_id(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name),
-              H5Aclose);
+  Handle attr(
+      check_id(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name),
+      H5Aclose);
   check(H5Awrite(attr, type, data), "write attribute " + name);
 }
 
 Handle open_attr(hid_t file, const std::string& path, const std::string& object, const std::string& name) {
   Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object + " in " + path), H5Oclose);
-  if (H5Aexists(obj, name.c_str()) <= 0) throw std::runtime_error("'" + path + "' has no attribute " + object + "@" + name);
+  if (H5Aexists(obj, name.c_str()) <= 0)
+    throw std::runtime_error("'" + path + "' has no attribute " + object + "@" + name);
   return Handle(check_id(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name), H5Aclose);
 }
 
@@ -212,6 +221,12 @@ std::string H5File::read_attribute_string(const std::string& object, const std::
   check(H5Aread(attr, type, v.data()), "read attribute " + name);
   while (!v.empty() && v.back() == '\0') v.pop_back();
   return v;
+}
+
+bool H5File::has_attribute(const std::string& object, const std::string& name) const {
+  if (!exists(object)) return false;
+  Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object + " in " + path_), H5Oclose);
+  return H5Aexists(obj, name.c_str()) > 0;
 }
 
 }  // namespace mote::io

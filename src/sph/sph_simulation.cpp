@@ -48,6 +48,11 @@ std::vector<std::int32_t> ints_to_host(const IntView1& v) {
   return std::vector<std::int32_t>(h.data(), h.data() + h.extent(0));
 }
 
+/// What the checkpointed dust variable holds (the S variable is stored as S_j / sqrt(rho) = sqrt(eps_j)).
+std::string dust_storage(const OneFluidDust& dust) {
+  return dust.settings().variable == DustVariable::Epsilon ? "eps_j" : "sqrt(eps_j)";
+}
+
 }  // namespace
 
 SphSimulation::SphSimulation(std::unique_ptr<SphSystem> system, const units::UnitSystem& units)
@@ -115,6 +120,7 @@ void SphSimulation::save_state(io::H5File& f) const {
     const hsize_t ns = dust->var.extent(1);
     f.write("/state/dust_var", Block::whole({n, ns}), to_host(dust->var, static_cast<int>(ns)).data());
     f.write("/state/dust_dvar", Block::whole({n, ns}), to_host(dust->dvar, static_cast<int>(ns)).data());
+    f.write_attribute("/state/dust_var", "stored", dust_storage(*dust));
   }
   f.write_attribute("/state", "time", system_->time());
   f.write_attribute("/state", "dt_next", system_->next_dt());
@@ -128,8 +134,14 @@ void SphSimulation::load_state(const io::H5File& f) {
     throw std::runtime_error("checkpoint holds a different number of particles or dimensions than the deck sets up");
   const Block vec = Block::whole({n, dim}), scalar = Block::whole({n});
   std::vector<double> buf2(n * dim), buf(n);
-  auto read2 = [&](const char* name, const RealView2& v) { f.read(name, vec, buf2.data()); from_host(buf2, v); };
-  auto read1 = [&](const char* name, const RealView1& v) { f.read(name, scalar, buf.data()); from_host(buf, v); };
+  auto read2 = [&](const char* name, const RealView2& v) {
+    f.read(name, vec, buf2.data());
+    from_host(buf2, v);
+  };
+  auto read1 = [&](const char* name, const RealView1& v) {
+    f.read(name, scalar, buf.data());
+    from_host(buf, v);
+  };
   read2("/state/x", p.x);
   read2("/state/v", p.v);
   read2("/state/a", p.a);
@@ -142,6 +154,14 @@ void SphSimulation::load_state(const io::H5File& f) {
   read1("/state/alpha", p.alpha);
   if (auto* dust = system_->dust()) {
     const hsize_t ns = dust->var.extent(1);
+    if (f.dims("/state/dust_var") != std::vector<hsize_t>{n, ns})
+      throw std::runtime_error("checkpoint holds a different number of dust species than the deck sets up");
+    const std::string stored = f.has_attribute("/state/dust_var", "stored")
+                                   ? f.read_attribute_string("/state/dust_var", "stored")
+                                   : std::string("unlabelled (written before S_j was stored as sqrt(eps_j))");
+    if (stored != dust_storage(*dust))
+      throw std::runtime_error("checkpoint dust variable is " + stored + ", the deck evolves " + dust_storage(*dust) +
+                               " (dust.variable): restart with the deck that wrote it");
     std::vector<double> dbuf(n * ns);
     f.read("/state/dust_var", Block::whole({n, ns}), dbuf.data());
     from_host(dbuf, dust->var);
@@ -161,9 +181,14 @@ void SphSimulation::load_state(const io::H5File& f) {
 
 std::vector<io::Diagnostic> SphSimulation::diagnostics() const {
   const auto d = system_->diagnostics();
-  return {{"mass", d.mass},       {"momentum_x", d.momentum[0]}, {"momentum_y", d.momentum[1]},
-          {"momentum_z", d.momentum[2]}, {"kinetic", d.kinetic}, {"thermal", d.thermal},
-          {"energy", d.energy},   {"v_rms", d.v_rms}};
+  return {{"mass", d.mass},
+          {"momentum_x", d.momentum[0]},
+          {"momentum_y", d.momentum[1]},
+          {"momentum_z", d.momentum[2]},
+          {"kinetic", d.kinetic},
+          {"thermal", d.thermal},
+          {"energy", d.energy},
+          {"v_rms", d.v_rms}};
 }
 
 std::optional<io::NonFinite> SphSimulation::find_non_finite() const {
@@ -172,11 +197,14 @@ std::optional<io::NonFinite> SphSimulation::find_non_finite() const {
   auto u = p.u, h = p.h;
   const int dim = p.dim;
   int first = std::numeric_limits<int>::max();
-  par_reduce("sph::find_non_finite", 0, p.n, KOKKOS_LAMBDA(int i, int& f) {
-    bool ok = math::isfinite(u(i)) && math::isfinite(h(i));
-    for (int d = 0; d < dim; ++d) ok = ok && math::isfinite(x(i, d)) && math::isfinite(v(i, d));
-    if (!ok) f = math::min(f, i);
-  }, Kokkos::Min<int>(first));
+  par_reduce(
+      "sph::find_non_finite", 0, p.n,
+      KOKKOS_LAMBDA(int i, int& f) {
+        bool ok = math::isfinite(u(i)) && math::isfinite(h(i));
+        for (int d = 0; d < dim; ++d) ok = ok && math::isfinite(x(i, d)) && math::isfinite(v(i, d));
+        if (!ok) f = math::min(f, i);
+      },
+      Kokkos::Min<int>(first));
   if (first == std::numeric_limits<int>::max()) return std::nullopt;
   return io::NonFinite{"particle state (x, v, u, h)", log::cat("particle index ", first)};
 }

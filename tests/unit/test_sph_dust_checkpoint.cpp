@@ -2,7 +2,8 @@
 // adapter (sph/sph_simulation.hpp): a run interrupted after 10 steps and
 // continued from its checkpoint is bit-identical to 20 uninterrupted steps
 // (three dust species, dustywave of PL15 sec. 4.1), and snapshots carry the
-// dust fractions per species.
+// dust fractions per species. A checkpoint of one dust variable (eps_j or
+// S_j, stored as sqrt(eps_j)) does not load into a run of the other.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -19,8 +20,9 @@ using mote::sph::testing::make_dustywave;
 
 namespace {
 
-std::unique_ptr<SphSimulation> make_simulation() {
+std::unique_ptr<SphSimulation> make_simulation(DustVariable var = DustVariable::Epsilon) {
   DustyWaveSetup w;
+  w.var = var;
   w.nspecies = 3;
   w.n = 64;
   return std::make_unique<SphSimulation>(std::make_unique<SphSystem>(make_dustywave(w)), units::UnitSystem{});
@@ -80,4 +82,26 @@ TEST(SphDustCheckpoint, RestartIsBitIdentical) {
   std::vector<double> eps(64 * 3);
   f.read("/particles/dust_fraction", io::Block::whole({64, 3}), eps.data());
   EXPECT_NEAR(eps[0] + eps[1] + eps[2], 0.5, 1e-3);  // eps0 = 0.5 split over three bins
+}
+
+TEST(SphDustCheckpoint, OtherDustVariableIsRefused) {
+  const auto dir = std::filesystem::temp_directory_path() / "mote_sph_dust_checkpoint";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "checkpoint_s.h5").string();
+  const auto comm = core::Comm::world();
+  {
+    auto sim = make_simulation(DustVariable::SqrtRhoEps);
+    io::H5File f(path, io::H5File::Mode::Create, comm);
+    f.create_group("/state");
+    sim->save_state(f);
+  }
+  io::H5File f(path, io::H5File::Mode::Read, comm);
+  EXPECT_EQ(f.read_attribute_string("/state/dust_var", "stored"), "sqrt(eps_j)");
+  make_simulation(DustVariable::SqrtRhoEps)->load_state(f);
+  try {
+    make_simulation(DustVariable::Epsilon)->load_state(f);
+    FAIL() << "an S checkpoint loaded into an eps run";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("dust.variable"), std::string::npos) << e.what();
+  }
 }

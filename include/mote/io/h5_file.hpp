@@ -52,6 +52,7 @@ class H5File {
   double read_attribute_real(const std::string& object, const std::string& name) const;
   std::int64_t read_attribute_int(const std::string& object, const std::string& name) const;
   std::string read_attribute_string(const std::string& object, const std::string& name) const;
+  bool has_attribute(const std::string& object, const std::string& name) const;
 
   const std::string& path() const { return path_; }
 
