@@ -3,8 +3,9 @@
 // dust terms, second neighbour loop for two first derivatives, kick-drift-kick
 // of eps_j) on a 3D periodic box (M4, h_fact 1.2, cubic lattice, subsonic
 // noise, eps = 0.01 in N equal bins, Epstein drag) with N = 0 (pure gas),
-// 1, 10, 100, for both discretisations of the dust equation (args: N, disc
-// 0 = direct second derivatives, 1 = two first derivatives).
+// 1, 10, 100, for both discretisations of the dust equation and the two PdV
+// forms (args: N, disc 0 = direct second derivatives, 1 = two first
+// derivatives; pdv 0 = div v of PL15 eq. 13, 1 = div v_g, dust.pdv = "gas").
 // Counters: particle-updates/s, seconds per step; compare the "time" column.
 //   bench_sph_dust --benchmark_out=sph_dust.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
@@ -22,7 +23,7 @@ namespace {
 using mote::Real;
 using namespace mote::sph;
 
-std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc) {
+std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, int pdv) {
   SphConfig cfg;
   cfg.dim = 3;
   cfg.kernel = KernelType::M4;
@@ -51,6 +52,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc) {
     DustSettings ds;
     ds.nspecies = nspecies;
     ds.discretisation = disc == 0 ? DustDiscretisation::SecondDerivatives : DustDiscretisation::FirstDerivatives;
+    ds.pdv = pdv == 0 ? DustPdV::Barycentric : DustPdV::Gas;
     ds.drag = DragLaw::Epstein;
     ds.rho_grain = 1.0;
     ds.sizes.clear();
@@ -65,7 +67,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc) {
 void BM_SphDustStep(benchmark::State& state) {
   const int nspecies = static_cast<int>(state.range(0));
   const int disc = static_cast<int>(state.range(1));
-  auto sys = make_dusty_box(32, nspecies, disc);
+  auto sys = make_dusty_box(32, nspecies, disc, static_cast<int>(state.range(2)));
   sys->step();  // warm up (list sizes)
   long long steps = 0;
   for (auto _ : state) {
@@ -80,13 +82,14 @@ void BM_SphDustStep(benchmark::State& state) {
 }
 
 BENCHMARK(BM_SphDustStep)
-    ->Args({0, 0})
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({10, 0})
-    ->Args({10, 1})
-    ->Args({100, 0})
-    ->Args({100, 1})
+    ->Args({0, 0, 0})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({10, 0, 0})
+    ->Args({10, 0, 1})
+    ->Args({10, 1, 0})
+    ->Args({100, 0, 0})
+    ->Args({100, 1, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
