@@ -75,6 +75,8 @@ void SphSystem::set_particles(const ParticleSetup& s) {
 
 void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& eps) {
   if (p_.n == 0) throw std::runtime_error("sph: set_dust() before set_particles()");
+  if (settings.pdv == DustPdV::Gas && cfg_.eos != EosType::Adiabatic)
+    throw std::invalid_argument("dust.pdv = \"gas\" needs sph.eos = \"adiabatic\" (no PdV work when isothermal)");
   dust_ = std::make_shared<OneFluidDust>(settings, p_.n, p_.dim);
   if (!eps.empty()) dust_->set_eps(eps);
   if (dt_next_ > 0.0) {  // added to a running (e.g. relaxed) system

@@ -162,3 +162,36 @@ TEST(SphDustLaws, DeckTable) {
 }
 
 }  // namespace
+
+namespace {
+
+// dust.pdv = "gas" changes the PdV work, which an isothermal gas does not have.
+TEST(SphDustLaws, GasPdVNeedsAdiabaticGas) {
+  for (auto eos : {EosType::Isothermal, EosType::Adiabatic}) {
+    SphConfig cfg;
+    cfg.dim = 1;
+    cfg.eos = eos;
+    Box box;
+    box.dim = 1;
+    box.periodic[0] = true;
+    const Lattice lat = cubic_lattice(box, 0.05);
+    ParticleSetup s;
+    s.dim = 1;
+    s.x = lat.x;
+    s.v.assign(lat.size(), 0.0);
+    s.m = equal_masses(lat.size(), 1.0);
+    s.h.assign(lat.size(), 1.2 * lat.dx);
+    s.u.assign(lat.size(), 1.0);
+    SphSystem sys(cfg, lat.box);
+    sys.set_particles(s);
+    DustSettings ds;
+    ds.pdv = DustPdV::Gas;
+    if (eos == EosType::Isothermal) {
+      EXPECT_THROW(sys.set_dust(ds), std::invalid_argument);
+    } else {
+      EXPECT_NO_THROW(sys.set_dust(ds));
+    }
+  }
+}
+
+}  // namespace
