@@ -76,6 +76,11 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc("HPL18 eq. 44 (combined) or PL15 eq. 16 (separate diffusion limit).");
   s.real("dust.C0").default_value(0.3).greater_than(0.0).max(1.0).doc("Safety factor C0 of the dust time-step.");
   s.boolean("dust.floor_negative").default_value(true).doc("Set eps_j < 0 to zero and report the mass (PL15 4.4.2).");
+  s.boolean("dust.project_mass")
+      .default_value(true)
+      .doc(
+          "S variable: rescale each species after every step to its dust mass at the step's start "
+          "(projection; the surplus is reported). The eps variable conserves dust mass without it.");
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {
@@ -105,6 +110,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   s.timestep = d.string("dust.timestep") == "combined" ? DustTimestep::Combined : DustTimestep::Separate;
   s.c_dust = d.real("dust.C0");
   s.floor_negative = d.boolean("dust.floor_negative");
+  s.project_mass = d.boolean("dust.project_mass");
   s.validate();
   return s;
 }

@@ -4,6 +4,7 @@
 #include "mote/sph/one_fluid_dust.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -71,9 +72,45 @@ void OneFluidDust::initialise(const Particles& p) {
   Kokkos::deep_copy(var_pred, var);
   Kokkos::deep_copy(dvar, 0.0);
   floored_mass_ = 0.0;
+  projected_mass_ = 0.0;
+  mass_ref_.clear();
 }
 
-void OneFluidDust::kick_predict(Real hdt) {
+void OneFluidDust::restore_mass_accounts(const MassAccounts& a) {
+  if (!a.reference.empty() && static_cast<int>(a.reference.size()) != s_.nspecies)
+    throw std::invalid_argument("dust: the projection reference needs one mass per species");
+  floored_mass_ = a.floored;
+  projected_mass_ = a.projected;
+  mass_ref_ = a.reference;
+}
+
+bool OneFluidDust::projecting() const { return s_.project_mass && s_.variable == DustVariable::SqrtRhoEps; }
+
+std::vector<Real> OneFluidDust::species_mass(const Particles& p) const {
+  using Policy = Kokkos::TeamPolicy<ExecSpace>;
+  const int ns = s_.nspecies, n = p.n;
+  const auto v = var;
+  const auto m = p.m;
+  const bool svar = s_.variable == DustVariable::SqrtRhoEps;
+  RealView1 out("sph::dust_species_mass", ns);
+  // One team per species, its threads reduce over the particles.
+  Kokkos::parallel_for(
+      "sph::dust_species_mass", Policy(ns, Kokkos::AUTO), KOKKOS_LAMBDA(const Policy::member_type& t) {
+        const int j = t.league_rank();
+        Real s = 0.0;
+        Kokkos::parallel_reduce(
+            Kokkos::TeamThreadRange(t, n),
+            [&](int a, Real& acc) { acc += m(a) * (svar ? v(a, j) * v(a, j) : v(a, j)); }, s);
+        Kokkos::single(Kokkos::PerTeam(t), [&]() { out(j) = s; });
+      });
+  auto h = Kokkos::create_mirror_view(out);
+  Kokkos::deep_copy(h, out);
+  return std::vector<Real>(h.data(), h.data() + ns);
+}
+
+void OneFluidDust::kick_predict(const Particles& p, Real hdt) {
+  // The reference is the mass of the first step after initialise() or a restart.
+  if (projecting() && mass_ref_.empty()) mass_ref_ = species_mass(p);
   const auto v = var;
   const auto vp = var_pred;
   const auto dv = dvar;
@@ -109,6 +146,20 @@ Real OneFluidDust::kick(const Particles& p, Real hdt) {
       },
       removed);
   floored_mass_ += removed;
+  if (projecting()) {
+    const std::vector<Real> mass_end = species_mass(p);
+    RealView1 scale("sph::dust_projection", ns);
+    auto hs = Kokkos::create_mirror_view(scale);
+    for (int j = 0; j < ns; ++j) {
+      hs(j) = mass_end[j] > 0.0 ? std::sqrt(mass_ref_[j] / mass_end[j]) : 1.0;
+      projected_mass_ += mass_end[j] - mass_ref_[j];
+    }
+    Kokkos::deep_copy(scale, hs);
+    par_for(
+        "sph::dust_project", 0, p.n, KOKKOS_LAMBDA(int a) {
+          for (int j = 0; j < ns; ++j) v(a, j) *= scale(j);
+        });
+  }
   return removed;
 }
 
@@ -239,7 +290,7 @@ int OneFluidDust::advance_dust_only(SphSystem& sys, Real t_end) {
   while (t < t_end * (1.0 - 1e-14)) {
     Real dt = timestep(p, sys.config());
     if (t + dt > t_end) dt = t_end - t;
-    kick_predict(0.5 * dt);
+    kick_predict(p, 0.5 * dt);
     sys.compute_accelerations(p.v, p.u);
     kick(p, 0.5 * dt);
     t += dt;

@@ -121,6 +121,10 @@ void SphSimulation::save_state(io::H5File& f) const {
     f.write("/state/dust_var", Block::whole({n, ns}), to_host(dust->var, static_cast<int>(ns)).data());
     f.write("/state/dust_dvar", Block::whole({n, ns}), to_host(dust->dvar, static_cast<int>(ns)).data());
     f.write_attribute("/state/dust_var", "stored", dust_storage(*dust));
+    const auto acc = dust->mass_accounts();
+    f.write_attribute("/state/dust_var", "floored_mass", acc.floored);
+    f.write_attribute("/state/dust_var", "projected_mass", acc.projected);
+    if (!acc.reference.empty()) f.write("/state/dust_mass_reference", Block::whole({ns}), acc.reference.data());
   }
   f.write_attribute("/state", "time", system_->time());
   f.write_attribute("/state", "dt_next", system_->next_dt());
@@ -167,6 +171,16 @@ void SphSimulation::load_state(const io::H5File& f) {
     from_host(dbuf, dust->var);
     f.read("/state/dust_dvar", Block::whole({n, ns}), dbuf.data());
     from_host(dbuf, dust->dvar);
+    OneFluidDust::MassAccounts acc;
+    if (f.has_attribute("/state/dust_var", "floored_mass")) {
+      acc.floored = f.read_attribute_real("/state/dust_var", "floored_mass");
+      acc.projected = f.read_attribute_real("/state/dust_var", "projected_mass");
+    }
+    if (f.exists("/state/dust_mass_reference")) {
+      acc.reference.resize(ns);
+      f.read("/state/dust_mass_reference", Block::whole({ns}), acc.reference.data());
+    }
+    dust->restore_mass_accounts(acc);
   }
   std::vector<std::int32_t> ibuf(n);
   for (const auto& [name, view] : {std::pair<const char*, IntView1>{"/state/type", p.type}, {"/state/id", p.id}}) {

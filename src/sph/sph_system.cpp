@@ -167,7 +167,7 @@ Real SphSystem::step() {
           upred(i) = u(i);
         }
       });
-  if (dust_) dust_->kick_predict(hdt);
+  if (dust_) dust_->kick_predict(p_, hdt);
   time_ += dt;
   compute_accelerations(vpred, upred);
   // Second kick with the new accelerations.
@@ -233,6 +233,7 @@ Diagnostics SphSystem::diagnostics() const {
     dg.thermal = dust_->thermal_energy(p_, cfg_);
     dg.dust_mass = dust_->dust_mass(p_);
     dg.dust_floored = dust_->floored_mass();
+    dg.dust_projected = dust_->projected_mass();
   }
   dg.kinetic = 0.5 * v2sum;
   dg.energy = dg.kinetic + dg.thermal;

@@ -237,8 +237,8 @@ TEST(SphDustWave, ConservationVariants) {
                     r.mass_drift, r.dust_drift, r.mom_drift, r.energy_drift);
         EXPECT_LT(r.mass_drift, 1e-12);
         EXPECT_LT(r.mom_drift, 1e-12);
-        // eps: linear in the variable, exact; S: quadratic, exact only in the semi-discrete sense.
-        EXPECT_LT(r.dust_drift, var == DustVariable::Epsilon ? 1e-12 : 1e-6);
+        // eps: linear in the variable, exact; S: quadratic, exact with the projection (dust.project_mass).
+        EXPECT_LT(r.dust_drift, 1e-12);
         EXPECT_LT(r.energy_drift, 1e-8);
       }
     }

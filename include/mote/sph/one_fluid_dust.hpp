@@ -24,6 +24,8 @@
 // conservation (PL15 eq. 41-42; HPL18 eq. 53-56), which the tests check.
 #pragma once
 
+#include <vector>
+
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
 #include "mote/sph/config.hpp"
@@ -55,9 +57,15 @@ class OneFluidDust {
   void initialise(const Particles& p);
 
   /// Leapfrog pieces (see SphSystem::step): var += dt/2 dvar, var_pred = var + dt/2 dvar.
-  void kick_predict(Real half_dt);
+  /// For the S variable with project_mass, the first call records each species'
+  /// dust mass as the projection's reference.
+  void kick_predict(const Particles& p, Real half_dt);
   /// var += dt/2 dvar, then the negative-eps floor; returns the dust mass it adds
   /// (sum m |eps_j| over the floored values: the negative dust mass removed).
+  /// For the S variable with project_mass, then rescales q_j by sqrt(M_j(ref) /
+  /// M_j): the explicit update of the quadratic variable adds O(dt^2) dust mass
+  /// per step, which this projection onto the conserved mass removes (Hairer,
+  /// Lubich & Wanner 2006, sec. IV.4); the removed mass is accumulated.
   Real kick(const Particles& p, Real half_dt);
 
   /// Dusty EOS, drag times, forces, du/dt and dvar/dt for velocities vel and
@@ -78,6 +86,18 @@ class OneFluidDust {
   /// Total dust mass added by the floor since the start (dust mass before
   /// flooring = dust_mass() - floored_mass()).
   Real floored_mass() const { return floored_mass_; }
+  /// Total dust mass the S-variable update created and the projection removed
+  /// since the start (0 for the eps variable or without project_mass).
+  Real projected_mass() const { return projected_mass_; }
+
+  /// Dust-mass accounting carried by checkpoints: the floored and projected
+  /// totals and the projection's per-species reference (empty before the first step).
+  struct MassAccounts {
+    Real floored = 0.0, projected = 0.0;
+    std::vector<Real> reference;
+  };
+  MassAccounts mass_accounts() const { return {floored_mass_, projected_mass_, mass_ref_}; }
+  void restore_mass_accounts(const MassAccounts& a);
   /// Particles with eps T_s > Courant time in the last time-step evaluation.
   int tva_violations() const { return tva_violations_; }
 
@@ -109,7 +129,13 @@ class OneFluidDust {
  private:
   DustSettings s_;
   RealView1 kdrag_, size_, tstop_;  ///< per species
+  /// sum_a m_a eps_aj for each species j (host).
+  std::vector<Real> species_mass(const Particles& p) const;
+  bool projecting() const;
+
   Real floored_mass_ = 0.0;
+  Real projected_mass_ = 0.0;
+  std::vector<Real> mass_ref_;  ///< per-species dust mass kept by the projection
   int tva_violations_ = 0;
   bool warned_ = false;
 };

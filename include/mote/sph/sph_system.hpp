@@ -44,11 +44,12 @@ struct Diagnostics {
   Real momentum[3] = {0.0, 0.0, 0.0};
   Real momentum_abs = 0.0;  ///< sum m |v| (scale for relative momentum errors)
   Real kinetic = 0.0;
-  Real thermal = 0.0;       ///< sum m u (adiabatic runs)
-  Real energy = 0.0;        ///< kinetic + thermal (PL15 eq. 40; thermal = sum m (1 - eps) u with dust)
-  Real v_rms = 0.0;         ///< mass-weighted rms velocity
-  Real dust_mass = 0.0;     ///< sum m eps (one-fluid dust)
-  Real dust_floored = 0.0;  ///< dust mass added by the negative-eps floor so far (= negative mass removed)
+  Real thermal = 0.0;         ///< sum m u (adiabatic runs)
+  Real energy = 0.0;          ///< kinetic + thermal (PL15 eq. 40; thermal = sum m (1 - eps) u with dust)
+  Real v_rms = 0.0;           ///< mass-weighted rms velocity
+  Real dust_mass = 0.0;       ///< sum m eps (one-fluid dust)
+  Real dust_floored = 0.0;    ///< dust mass added by the negative-eps floor so far (= negative mass removed)
+  Real dust_projected = 0.0;  ///< dust mass the S-variable projection removed so far (OneFluidDust::kick)
 };
 
 /// Extra time-step constraint (e.g. from a dust module): returns a dt bound.
