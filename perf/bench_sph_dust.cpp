@@ -4,8 +4,9 @@
 // of eps_j) on a 3D periodic box (M4, h_fact 1.2, cubic lattice, subsonic
 // noise, eps = 0.01 in N equal bins, Epstein drag) with N = 0 (pure gas),
 // 1, 10, 100, for both discretisations of the dust equation and the two PdV
-// forms (args: N, disc 0 = direct second derivatives, 1 = two first
-// derivatives; pdv 0 = div v of PL15 eq. 13, 1 = div v_g, dust.pdv = "gas").
+// forms and both dust variables (args: N, disc 0 = direct second derivatives,
+// 1 = two first derivatives; pdv 0 = div v of PL15 eq. 13, 1 = div v_g,
+// dust.pdv = "gas"; var 0 = eps_j, 1 = S_j with its dust-mass projection).
 // Counters: particle-updates/s, seconds per step; compare the "time" column.
 //   bench_sph_dust --benchmark_out=sph_dust.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
@@ -23,7 +24,7 @@ namespace {
 using mote::Real;
 using namespace mote::sph;
 
-std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, int pdv) {
+std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, int pdv, int var) {
   SphConfig cfg;
   cfg.dim = 3;
   cfg.kernel = KernelType::M4;
@@ -53,6 +54,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, in
     ds.nspecies = nspecies;
     ds.discretisation = disc == 0 ? DustDiscretisation::SecondDerivatives : DustDiscretisation::FirstDerivatives;
     ds.pdv = pdv == 0 ? DustPdV::Barycentric : DustPdV::Gas;
+    ds.variable = var == 0 ? DustVariable::Epsilon : DustVariable::SqrtRhoEps;
     ds.drag = DragLaw::Epstein;
     ds.rho_grain = 1.0;
     ds.sizes.clear();
@@ -67,7 +69,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, in
 void BM_SphDustStep(benchmark::State& state) {
   const int nspecies = static_cast<int>(state.range(0));
   const int disc = static_cast<int>(state.range(1));
-  auto sys = make_dusty_box(32, nspecies, disc, static_cast<int>(state.range(2)));
+  auto sys = make_dusty_box(32, nspecies, disc, static_cast<int>(state.range(2)), static_cast<int>(state.range(3)));
   sys->step();  // warm up (list sizes)
   long long steps = 0;
   for (auto _ : state) {
@@ -82,14 +84,16 @@ void BM_SphDustStep(benchmark::State& state) {
 }
 
 BENCHMARK(BM_SphDustStep)
-    ->Args({0, 0, 0})
-    ->Args({1, 0, 0})
-    ->Args({1, 1, 0})
-    ->Args({10, 0, 0})
-    ->Args({10, 0, 1})
-    ->Args({10, 1, 0})
-    ->Args({100, 0, 0})
-    ->Args({100, 1, 0})
+    ->Args({0, 0, 0, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({1, 1, 0, 0})
+    ->Args({10, 0, 0, 0})
+    ->Args({10, 0, 1, 0})
+    ->Args({10, 1, 0, 0})
+    ->Args({10, 0, 0, 1})
+    ->Args({100, 0, 0, 0})
+    ->Args({100, 1, 0, 0})
+    ->Args({100, 0, 0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -87,21 +87,29 @@ void OneFluidDust::restore_mass_accounts(const MassAccounts& a) {
 bool OneFluidDust::projecting() const { return s_.project_mass && s_.variable == DustVariable::SqrtRhoEps; }
 
 std::vector<Real> OneFluidDust::species_mass(const Particles& p) const {
-  using Policy = Kokkos::TeamPolicy<ExecSpace>;
-  const int ns = s_.nspecies, n = p.n;
+  // Partial sums over blocks of particles (each block reads its rows of var once,
+  // from cache), then over the blocks: deterministic, no atomics.
+  constexpr int kBlock = 64;
+  const int ns = s_.nspecies, n = p.n, nblock = (n + kBlock - 1) / kBlock;
   const auto v = var;
   const auto m = p.m;
   const bool svar = s_.variable == DustVariable::SqrtRhoEps;
+  RealView2 partial("sph::dust_mass_partial", nblock, ns);
+  par_for(
+      "sph::dust_mass_blocks", 0, nblock, KOKKOS_LAMBDA(int b) {
+        const int a1 = b * kBlock + kBlock < n ? b * kBlock + kBlock : n;
+        for (int j = 0; j < ns; ++j) {
+          Real s = 0.0;
+          for (int a = b * kBlock; a < a1; ++a) s += m(a) * (svar ? v(a, j) * v(a, j) : v(a, j));
+          partial(b, j) = s;
+        }
+      });
   RealView1 out("sph::dust_species_mass", ns);
-  // One team per species, its threads reduce over the particles.
-  Kokkos::parallel_for(
-      "sph::dust_species_mass", Policy(ns, Kokkos::AUTO), KOKKOS_LAMBDA(const Policy::member_type& t) {
-        const int j = t.league_rank();
+  par_for(
+      "sph::dust_mass_species", 0, ns, KOKKOS_LAMBDA(int j) {
         Real s = 0.0;
-        Kokkos::parallel_reduce(
-            Kokkos::TeamThreadRange(t, n),
-            [&](int a, Real& acc) { acc += m(a) * (svar ? v(a, j) * v(a, j) : v(a, j)); }, s);
-        Kokkos::single(Kokkos::PerTeam(t), [&]() { out(j) = s; });
+        for (int b = 0; b < nblock; ++b) s += partial(b, j);
+        out(j) = s;
       });
   auto h = Kokkos::create_mirror_view(out);
   Kokkos::deep_copy(h, out);
