@@ -44,10 +44,11 @@ def last_state(run_dir):
     with h5py.File(mote.list_snapshots(run_dir)[-1]) as f:
         ids = f["particles/id"][...]
         eps = f["particles/dust_fraction"][...].reshape(len(ids), -1)
-        z = f["particles/position"][:, 1]  # the 2D column (x, z)
         deck = f.attrs["deck"]
+        deck = deck.decode() if isinstance(deck, bytes) else deck
+        z = f["particles/position"][:, check.vertical_axis(deck)]
     order = np.argsort(ids)
-    return ids[order], eps[order], z[order], deck.decode() if isinstance(deck, bytes) else deck
+    return ids[order], eps[order], z[order], deck
 
 
 def wall_seconds(log_text):

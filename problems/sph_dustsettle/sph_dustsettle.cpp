@@ -23,7 +23,8 @@ namespace {
 
 using namespace mote;
 
-/// Adds the dust mass (before and after the negative-eps floor) to the history.
+/// Adds the dust mass (before and after the negative-eps floor) and the mass the
+/// S-variable projection removed to the history.
 class SettleSimulation final : public sph::SphSimulation {
  public:
   using SphSimulation::SphSimulation;
@@ -33,6 +34,7 @@ class SettleSimulation final : public sph::SphSimulation {
     const auto d = system_->diagnostics();
     out.push_back({"dust_mass", d.dust_mass});                             // after the floor
     out.push_back({"dust_mass_unfloored", d.dust_mass - d.dust_floored});  // before the floor
+    out.push_back({"dust_projected", d.dust_projected});                   // removed by the S-variable projection
     return out;
   }
 };
@@ -42,6 +44,16 @@ void declare(core::DeckSchema& s) {
   sph::DustSettings::declare(s);
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
   s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
+  s.integer("settle.dim")
+      .default_value(2LL)
+      .min(2)
+      .max(3)
+      .doc("2: the (x, z) slab of PL15; 3: the (x, y, z) column of HPL18 (x, y periodic).");
+  s.real("settle.width")
+      .default_value(0.5)
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Periodic extent of x (and y in 3D); the lattice spacing is width / nx.");
   s.real("settle.rho0")
       .default_value(1e-3)
       .greater_than(0.0)
@@ -69,6 +81,8 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   }
   sph::SettlingColumn c;
   c.nx = static_cast<int>(d.integer("settle.nx"));
+  c.dim = static_cast<int>(d.integer("settle.dim"));
+  c.width = d.real("settle.width");
   c.rho0 = d.real("settle.rho0");
   c.r0 = d.real("settle.R0");
   c.h_over_r = d.real("settle.H_over_R");
@@ -77,7 +91,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   sph::RelaxedColumn col;
   {
     core::ScopedTimer t(ctx.timers, "relax");
-    col = sph::relax_settling_column(c, sph::config_from_deck(d, 2));
+    col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim));
   }
   auto sys = col.make_system();
   sys->set_dust(ds);

@@ -3,6 +3,7 @@
 #include "mote/sph/settling_column.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "mote/sph/external.hpp"
 #include "mote/sph/lattice.hpp"
@@ -26,27 +27,35 @@ std::unique_ptr<SphSystem> RelaxedColumn::make_system() const {
 }
 
 RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg) {
+  if (c.dim != 2 && c.dim != 3) throw std::invalid_argument("settling column: dim must be 2 or 3");
   const Real H = c.scale_height();
-  cfg.dim = 2;
+  const int dim = c.dim, zax = dim - 1;
+  cfg.dim = dim;
   cfg.eos = EosType::Isothermal;
   cfg.cs_iso = c.sound_speed();
   Box box;
-  box.dim = 2;
-  box.lo[0] = -0.25;
-  box.hi[0] = 0.25;
-  box.periodic[0] = true;
-  box.lo[1] = -3.0 * H;
-  box.hi[1] = 3.0 * H;
-  Lattice lat = hexagonal_lattice(box, (box.hi[0] - box.lo[0]) / c.nx);
+  box.dim = dim;
+  for (int d = 0; d < zax; ++d) {
+    box.lo[d] = -0.5 * c.width;
+    box.hi[d] = 0.5 * c.width;
+    box.periodic[d] = true;
+  }
+  box.lo[zax] = -3.0 * H;
+  box.hi[zax] = 3.0 * H;
+  const Real dx = c.width / c.nx;
+  Lattice lat = dim == 2 ? hexagonal_lattice(box, dx) : close_packed_lattice(box, dx);
   auto rho = [&c](Real z) { return c.gas_density(z); };
-  stretch_map(lat, 1, box.lo[1], box.hi[1], rho);  // eq. 54
+  stretch_map(lat, zax, box.lo[zax], box.hi[zax], rho);  // eq. 54
   const int n = lat.size();
   ParticleSetup s;
-  s.dim = 2;
+  s.dim = dim;
   s.x = lat.x;
-  s.v.assign(2 * n, 0.0);
-  s.m = equal_masses(n, lat.box.length(0) * integrate_profile(rho, box.lo[1], box.hi[1]));
-  for (int i = 0; i < n; ++i) s.h.push_back(cfg.effective_hfact() * std::sqrt(s.m[i] / rho(lat.x[2 * i + 1])));
+  s.v.assign(static_cast<std::size_t>(dim) * n, 0.0);
+  Real area = 1.0;
+  for (int d = 0; d < zax; ++d) area *= lat.box.length(d);
+  s.m = equal_masses(n, area * integrate_profile(rho, box.lo[zax], box.hi[zax]));
+  for (int i = 0; i < n; ++i)
+    s.h.push_back(cfg.effective_hfact() * std::pow(s.m[i] / rho(lat.x[dim * i + zax]), 1.0 / dim));
 
   cfg.damping = c.relax_damping;  // eq. 56
   SphSystem gas(cfg, lat.box);
@@ -56,9 +65,9 @@ RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg) {
   gas.advance_to(c.relax_time);
   const Snapshot sn = gas.snapshot();
   for (int i = 0; i < n; ++i) {
-    for (int d = 0; d < 2; ++d) {
-      s.x[2 * i + d] = sn.x(i, d);
-      s.v[2 * i + d] = sn.v(i, d);
+    for (int d = 0; d < dim; ++d) {
+      s.x[dim * i + d] = sn.x(i, d);
+      s.v[dim * i + d] = sn.v(i, d);
     }
     s.h[i] = sn.h(i);
   }
