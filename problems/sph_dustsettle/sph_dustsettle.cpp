@@ -7,7 +7,9 @@
 // and rho_grain are read in cgs (settle.grain_units = "cgs") and converted
 // with the run's units (10 au, M_sun, G = 1). check.py compares the dust
 // density with the 1D solutions of HPL18 app. A (eq. A3-A5).
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "mote/core/deck.hpp"
@@ -38,6 +40,23 @@ class SettleSimulation final : public sph::SphSimulation {
     return out;
   }
 };
+
+/// Progress lines for the gas-only relaxation, every run.progress_interval wall seconds (none when 0).
+std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const core::Deck& d) {
+  const double interval = d.real("run.progress_interval");
+  if (interval <= 0.0) return {};
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto last = start;
+  return [=](const sph::SphSystem& gas) mutable {
+    const auto now = clock::now();
+    if (std::chrono::duration<double>(now - last).count() < interval) return;
+    last = now;
+    const double wall = std::chrono::duration<double>(now - start).count(), done = gas.time() / t_relax;
+    log::info(log::format("relax %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s", gas.steps(), gas.time(), gas.next_dt(),
+                          100.0 * done, log::hms(wall * (1.0 - done) / done).c_str()));
+  };
+}
 
 void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
@@ -88,10 +107,15 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   c.h_over_r = d.real("settle.H_over_R");
   c.relax_time = d.real("settle.relax_time");
   c.relax_damping = d.real("settle.relax_damping");
+  if (ctx.restarting) {
+    // The checkpoint holds the relaxed (and evolved) particles; only the lattice is needed to size the system.
+    log::info("sph_dustsettle: restarting, the gas-only relaxation is skipped");
+    c.relax_time = 0.0;
+  }
   sph::RelaxedColumn col;
   {
     core::ScopedTimer t(ctx.timers, "relax");
-    col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim));
+    col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim), relax_progress(c.relax_time, d));
   }
   auto sys = col.make_system();
   sys->set_dust(ds);

@@ -1,6 +1,7 @@
 // Rank-aware logging (see include/mote/core/log.hpp).
 #include "mote/core/log.hpp"
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <iostream>
@@ -36,6 +37,12 @@ std::string format(const char* fmt, ...) {
   std::vsnprintf(buffer.data(), buffer.size(), fmt, args);
   va_end(args);
   return std::string(buffer.data(), static_cast<size_t>(n > 0 ? n : 0));
+}
+
+std::string hms(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
+  const long long s = static_cast<long long>(seconds + 0.5);
+  return format("%02lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
 }
 
 }  // namespace mote::log

@@ -126,7 +126,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     std::unique_ptr<Simulation> sim;
     try {
       core::ScopedTimer timer(timers, "setup");
-      sim = problem.create(ProblemContext{*deck, comm, units, timers});
+      sim = problem.create(ProblemContext{*deck, comm, units, timers, restart.has_value()});
     } catch (const core::DeckError& e) {
       if (comm.is_root()) std::cerr << "error: " << e.what() << std::endl;
       return kExitBadInput;

@@ -42,12 +42,6 @@ class SignalGuard {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
-std::string hms(double seconds) {
-  if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
-  const long long s = static_cast<long long>(seconds + 0.5);
-  return log::format("%02lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
-}
-
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -191,7 +185,7 @@ void RunLoop::progress(const State& s, double wall, long long steps_done) const 
   const double rate = wall > 0 ? steps_done / wall : 0.0;
   const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
   log::info(log::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
-                        100.0 * frac, hms(eta).c_str(), rate));
+                        100.0 * frac, log::hms(eta).c_str(), rate));
 }
 
 int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {

@@ -362,11 +362,12 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         }
       });
 
-  RealView1 h_cover("sph::h_cover", n);
+  RealView1 h_cover("sph::h_cover", n), h_build("sph::h_build", n);
   RealView2 x_build("sph::x_build", n, Dim);
   par_for(
       "sph::neighbour_save", 0, n, KOKKOS_LAMBDA(int a) {
         h_cover(a) = h(a) * (1.0 + eps);
+        h_build(a) = h(a);
         for (int d = 0; d < Dim; ++d) x_build(a, d) = x(a, d);
       });
 
@@ -379,6 +380,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   nl.image = image;
   nl.h_cover = h_cover;
   nl.x_build = x_build;
+  nl.h_build = h_build;
   nl.delta = delta;
   nl.grid = g;
   return !built;
@@ -441,7 +443,7 @@ std::size_t NeighbourList::bytes() const {
   return image.extent(0) +
          sizeof(int) * (offsets.extent(0) + neigh.extent(0) + counts.extent(0) + grid.cell_start.extent(0) +
                         grid.cell_particles.extent(0)) +
-         sizeof(Real) * (h_cover.extent(0) + x_build.extent(0) * x_build.extent(1));
+         sizeof(Real) * (h_cover.extent(0) + h_build.extent(0) + x_build.extent(0) * x_build.extent(1));
 }
 
 }  // namespace mote::sph

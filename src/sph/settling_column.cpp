@@ -26,7 +26,8 @@ std::unique_ptr<SphSystem> RelaxedColumn::make_system() const {
   return sys;
 }
 
-RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg) {
+RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg,
+                                    const std::function<void(const SphSystem&)>& after_step) {
   if (c.dim != 2 && c.dim != 3) throw std::invalid_argument("settling column: dim must be 2 or 3");
   const Real H = c.scale_height();
   const int dim = c.dim, zax = dim - 1;
@@ -62,7 +63,7 @@ RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg) {
   gas.set_particles(s);
   gas.add_external_force(disc_vertical_gravity(c.gm, c.r0));
   gas.initialise();
-  gas.advance_to(c.relax_time);
+  gas.advance_to(c.relax_time, after_step);
   const Snapshot sn = gas.snapshot();
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < dim; ++d) {

@@ -126,6 +126,11 @@ void SphSimulation::save_state(io::H5File& f) const {
     f.write_attribute("/state/dust_var", "projected_mass", acc.projected);
     if (!acc.reference.empty()) f.write("/state/dust_mass_reference", Block::whole({ns}), acc.reference.data());
   }
+  const auto& nl = system_->neighbours();
+  if (nl.built()) {  // what the list was built from: a restart rebuilds the same list
+    f.write("/state/neighbour_x_build", vec, to_host(nl.x_build, p.dim).data());
+    f.write("/state/neighbour_h_build", scalar, to_host(nl.h_build).data());
+  }
   f.write_attribute("/state", "time", system_->time());
   f.write_attribute("/state", "dt_next", system_->next_dt());
   f.write_attribute("/state", "steps", static_cast<std::int64_t>(system_->steps()));
@@ -188,6 +193,13 @@ void SphSimulation::load_state(const io::H5File& f) {
     auto h = Kokkos::create_mirror_view(view);
     for (hsize_t i = 0; i < n; ++i) h(i) = ibuf[i];
     Kokkos::deep_copy(view, h);
+  }
+  if (f.exists("/state/neighbour_x_build")) {
+    RealView2 xb("sph::x_build", n, dim);
+    RealView1 hb("sph::h_build", n);
+    read2("/state/neighbour_x_build", xb);
+    read1("/state/neighbour_h_build", hb);
+    system_->rebuild_neighbours_as_built(xb, hb);
   }
   system_->restore_clock(f.read_attribute_real("/state", "time"), f.read_attribute_real("/state", "dt_next"),
                          f.read_attribute_int("/state", "steps"));

@@ -183,12 +183,25 @@ Real SphSystem::step() {
   return dt;
 }
 
-int SphSystem::advance_to(Real t_end) {
+void SphSystem::rebuild_neighbours_as_built(const RealView2& x_build, const RealView1& h_build) {
+  const RealView2 x = p_.x;
+  const RealView1 h = p_.h;
+  p_.x = RealView2("sph::x_rebuild", p_.n, p_.dim);
+  p_.h = RealView1("sph::h_rebuild", p_.n);
+  Kokkos::deep_copy(p_.x, x_build);
+  Kokkos::deep_copy(p_.h, h_build);
+  nl_.build(p_, box_, cfg_.kernel, cfg_.skin);  // the wrap is the identity on built positions
+  p_.x = x;
+  p_.h = h;
+}
+
+int SphSystem::advance_to(Real t_end, const std::function<void(const SphSystem&)>& after_step) {
   int n = 0;
   while (time_ < t_end * (1.0 - 1e-14)) {
     if (time_ + dt_next_ > t_end) dt_next_ = t_end - time_;
     step();
     ++n;
+    if (after_step) after_step(*this);
   }
   return n;
 }

@@ -29,4 +29,7 @@ void error(const Args&... args) { error_line(cat(args...)); }
 /// printf-style formatting into a std::string (for fixed-width numbers).
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 
+/// A duration as hh:mm:ss ("--:--:--" when unknown: negative or not finite).
+std::string hms(double seconds);
+
 }  // namespace mote::log

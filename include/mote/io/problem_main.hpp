@@ -24,6 +24,9 @@ struct ProblemContext {
   const core::Comm& comm;
   const units::UnitSystem& units;
   core::Timers& timers;
+  /// True when the run continues from a checkpoint: the state built here is
+  /// overwritten by it, so expensive preparation (e.g. a relaxation) may be skipped.
+  bool restarting = false;
 };
 
 struct ProblemDefinition {

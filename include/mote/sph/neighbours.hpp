@@ -62,7 +62,8 @@ class NeighbourList {
   View<unsigned char*> image;  ///< image code of each entry (Box::image_shift)
   View<int*> counts;           ///< list length per particle (sizes the next build)
   RealView1 h_cover;           ///< largest h each particle's list stays valid for
-  RealView2 x_build;           ///< positions at build time
+  RealView2 x_build;           ///< positions at build time (wrapped into the box)
+  RealView1 h_build;           ///< smoothing lengths at build time
   Real delta = 0.0;            ///< absolute displacement skin
   CellGrid grid;
 

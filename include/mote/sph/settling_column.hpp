@@ -10,6 +10,7 @@
 // the dust is added.
 #pragma once
 
+#include <functional>
 #include <memory>
 
 #include "mote/core/kokkos_types.hpp"
@@ -46,7 +47,9 @@ struct RelaxedColumn {
 };
 
 /// Sets up the lattice and relaxes it gas-only to c.relax_time; cfg supplies
-/// the kernel, h_fact and viscosity (its eos, c_s and damping are replaced).
-RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg);
+/// the kernel, h_fact and viscosity (its eos, c_s and damping are replaced);
+/// after_step (optional) sees the relaxing gas after every step.
+RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg,
+                                    const std::function<void(const SphSystem&)>& after_step = {});
 
 }  // namespace mote::sph

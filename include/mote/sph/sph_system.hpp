@@ -76,8 +76,9 @@ class SphSystem {
   OneFluidDust* dust() { return dust_.get(); }
   const OneFluidDust* dust() const { return dust_.get(); }
 
-  /// Steps until time t_end (the last step is shortened to land on it).
-  int advance_to(Real t_end);
+  /// Steps until time t_end (the last step is shortened to land on it);
+  /// after_step, when given, is called after every step (progress output).
+  int advance_to(Real t_end, const std::function<void(const SphSystem&)>& after_step = {});
 
   void add_external_force(ExternalForce f) { external_.push_back(std::move(f)); }
   void add_timestep_constraint(TimestepConstraint c) { dt_hooks_.push_back(std::move(c)); }
@@ -110,6 +111,11 @@ class SphSystem {
     dt_next_ = dt_next;
     steps_ = steps;
   }
+  /// Restart: rebuilds the neighbour list from the positions and smoothing
+  /// lengths it was last built with (NeighbourList::x_build, h_build), so that
+  /// the restarted run rebuilds, and wraps positions, at the same steps as an
+  /// uninterrupted one and stays bit-identical to it.
+  void rebuild_neighbours_as_built(const RealView2& x_build, const RealView1& h_build);
   /// div v of the previous step (Cullen & Dehnen switch), part of the state.
   const RealView1& divv_old() const { return divv_old_; }
 
