@@ -27,7 +27,9 @@ Metrics:
     |front / reference - 1| <= --front-tol at --orbits;
   * A5/A7: dust mass from history.txt, after the negative-eps floor
     (dust_mass, <= --mass-tol) and before it (dust_mass_unfloored, <= --unfloored-tol);
-    the mass removed by the S-variable projection (dust_projected) is printed;
+    the mass removed by the S-variable projection (dust_projected) and the
+    number of particles outside the terminal-velocity approximation
+    (tva_violations) are printed;
   * A6 (--table2, N = 10 power-law run): per-species L2 error of rho_d on the
     particles against the 1D solution, normalised by the maximum of the
     reference (SPLASH's L2, as in HPL18 Table 2: sqrt(mean(residual^2)) / max
@@ -244,6 +246,9 @@ def main():
     if "dust_projected" in hist.dtype.names:
         print(f"dust mass the S-variable projection removed (the explicit update's O(dt^2) surplus): "
               f"{hist['dust_projected'][-1] / m0:.2e} of the dust mass")
+    if "tva_violations" in hist.dtype.names:
+        print(f"particles where eps T_s exceeds the Courant time-step (terminal-velocity approximation fails, "
+              f"PL15 eq. 18): at most {int(hist['tva_violations'].max())}, at the end {int(hist['tva_violations'][-1])}")
     snap, z, rho, eps, v, vg = snaps[-1]
     zc, refs, l2 = [], [], []
     for j in range(len(col.eps)):

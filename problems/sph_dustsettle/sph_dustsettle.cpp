@@ -25,8 +25,9 @@ namespace {
 
 using namespace mote;
 
-/// Adds the dust mass (before and after the negative-eps floor) and the mass the
-/// S-variable projection removed to the history.
+/// Adds the dust mass (before and after the negative-eps floor), the mass the
+/// S-variable projection removed and the particles outside the terminal-velocity
+/// approximation to the history.
 class SettleSimulation final : public sph::SphSimulation {
  public:
   using SphSimulation::SphSimulation;
@@ -37,6 +38,9 @@ class SettleSimulation final : public sph::SphSimulation {
     out.push_back({"dust_mass", d.dust_mass});                             // after the floor
     out.push_back({"dust_mass_unfloored", d.dust_mass - d.dust_floored});  // before the floor
     out.push_back({"dust_projected", d.dust_projected});                   // removed by the S-variable projection
+    // Particles where eps T_s exceeds the Courant time-step (PL15 eq. 18): the terminal-velocity
+    // approximation fails there (the low-density gas above the column).
+    out.push_back({"tva_violations", static_cast<double>(system_->dust()->tva_violations())});
     return out;
   }
 };

@@ -1,7 +1,8 @@
 // Dusty particle loops of the one-fluid method (PL15 sec. 3, app. B; HPL18
 // sec. 3); see include/mote/sph/one_fluid_dust.hpp.
 //   sph::dust_prepare   eps = sum_j eps_j, gas pressure and sound speed (PL15 eq. 14,
-//                       HPL18 eq. 31-32), T_sj and tilde T_sj (HPL18 eq. 14-17).
+//                       HPL18 eq. 31-32), T_sj (with dust.limit_stopping_time at most h / c_s,
+//                       Ballabio et al. 2018) and tilde T_sj (HPL18 eq. 14-17).
 //   sph::dust_forces    momentum (PL15 eq. 25), AV with (1 - eps_a) (eq. 31-32),
 //                       conductivity / (1 - eps_a) (eq. 34-35), du/dt (eq. 27 / 45,
 //                       HPL18 eq. 55-56; with dust.pdv = "gas" the div v_g + drag heating
@@ -61,6 +62,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
   const Real cs0 = cfg.cs_iso;
   const int law = static_cast<int>(st.drag);
   const Real rho_grain = st.rho_grain;
+  const bool limit_ts = st.limit_ts;
 
   if (dust.pack.extent(0) != static_cast<std::size_t>(n)) {
     dust.pack = decltype(dust.pack)(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::dust_pack"), n,
@@ -134,6 +136,7 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           } else {
             t = tstop(j);
           }
+          if (limit_ts && t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
           ts(a, j) = t;
           sum_ts += ej * t;
         }

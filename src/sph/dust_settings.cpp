@@ -81,6 +81,12 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc(
           "S variable: rescale each species after every step to its dust mass at the step's start "
           "(projection; the surplus is reported). The eps variable conserves dust mass without it.");
+  s.boolean("dust.limit_stopping_time")
+      .default_value(false)
+      .doc(
+          "Use min(t_sj, h / c_s) in the dust terms (the flux limiter of Ballabio et al. 2018): caps the "
+          "drift where the stopping length exceeds the resolution and the terminal-velocity approximation "
+          "fails (the low-density gas above a disc column).");
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {
@@ -111,6 +117,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   s.c_dust = d.real("dust.C0");
   s.floor_negative = d.boolean("dust.floor_negative");
   s.project_mass = d.boolean("dust.project_mass");
+  s.limit_ts = d.boolean("dust.limit_stopping_time");
   s.validate();
   return s;
 }

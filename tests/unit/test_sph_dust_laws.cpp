@@ -42,9 +42,9 @@ TEST(SphDustLaws, PowerLawBinsReproduceTable1) {
   EXPECT_NEAR(sum, 1.0 / 101.0, 1e-15);
 }
 
-// Device values of T_sj and tilde T_sj for N = 3 Epstein species on a uniform
-// 1D box: T_sj from eq. 13-14, tilde T_sj from eq. 15, and the identity of eq. 18.
-TEST(SphDustLaws, EpsteinMultigrainTimes) {
+// N = 3 Epstein species (1e-3, 1e-2, 0.1; eps 0.01, 0.05, 0.1) on a uniform
+// periodic 1D box of 50 particles, u = 1, gamma = 5/3.
+SphSystem three_species_box(bool limit_ts) {
   SphConfig cfg;
   cfg.dim = 1;
   cfg.eos = EosType::Adiabatic;
@@ -70,8 +70,19 @@ TEST(SphDustLaws, EpsteinMultigrainTimes) {
   ds.sizes = {1e-3, 1e-2, 1e-1};
   ds.rho_grain = 3.0;
   ds.eps = {0.01, 0.05, 0.1};
+  ds.limit_ts = limit_ts;
   sys.set_dust(ds);
   sys.initialise();
+  return sys;
+}
+
+// Device values of T_sj and tilde T_sj: T_sj from eq. 13-14 (with the
+// limiter at most h / c_s, Ballabio et al. 2018), tilde T_sj from eq. 15 and
+// the identity of eq. 18 with the times used.
+void check_multigrain_times(bool limit_ts) {
+  const SphSystem sys = three_species_box(limit_ts);
+  const double gamma = 5.0 / 3.0, eps = 0.16;
+  const double sizes[3] = {1e-3, 1e-2, 1e-1}, fractions[3] = {0.01, 0.05, 0.1};
   const OneFluidDust& d = *sys.dust();
   auto ts = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.ts);
   auto coef = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.coef);
@@ -79,21 +90,31 @@ TEST(SphDustLaws, EpsteinMultigrainTimes) {
   auto dtot = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.d_tot);
   const Snapshot snap = sys.snapshot();
   auto cs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sys.particles().cs);
-  const double eps = 0.16;
+  int capped = 0;
   for (int a = 0; a < 50; a += 7) {
     // Gas sound speed from P = (gamma - 1)(1 - eps) rho u (PL15 eq. 14): c_s^2 = gamma (gamma - 1) u.
-    EXPECT_NEAR(cs(a), std::sqrt(cfg.gamma * (cfg.gamma - 1.0) * 1.0), 1e-12);
+    EXPECT_NEAR(cs(a), std::sqrt(gamma * (gamma - 1.0) * 1.0), 1e-12);
     double sum = 0.0;
     for (int j = 0; j < 3; ++j) {
-      const double t = 3.0 * ds.sizes[j] * std::sqrt(M_PI * cfg.gamma / 8.0) / (snap.rho(a) * cs(a));
+      double t = 3.0 * sizes[j] * std::sqrt(M_PI * gamma / 8.0) / (snap.rho(a) * cs(a));
+      if (limit_ts && t > snap.h(a) / cs(a)) {
+        t = snap.h(a) / cs(a);
+        ++capped;
+      }
       EXPECT_NEAR(ts(a, j) / t, 1.0, 1e-12);
-      sum += ds.eps[j] * t;
+      sum += fractions[j] * t;
     }
     EXPECT_NEAR(ets(a) / sum, 1.0, 1e-12);
-    for (int j = 0; j < 3; ++j) EXPECT_NEAR(coef(a, j), ds.eps[j] * (ts(a, j) - sum) / (1.0 - eps), 1e-14);
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(coef(a, j), fractions[j] * (ts(a, j) - sum) / (1.0 - eps), 1e-14);
     EXPECT_NEAR(dtot(a) / sum, 1.0, 1e-12);  // HPL18 eq. 18
   }
+  // h / c_s = 0.032 here: the limiter caps the 0.1 (t_s = 0.33) and 0.01 (0.033) species.
+  EXPECT_EQ(capped, limit_ts ? 2 * 8 : 0);
 }
+
+TEST(SphDustLaws, EpsteinMultigrainTimes) { check_multigrain_times(false); }
+
+TEST(SphDustLaws, StoppingTimeLimiterCapsAtHOverCs) { check_multigrain_times(true); }
 
 // PL15 sec. 4.4.2: eps_j < 0 is set to zero and the removed mass is accounted.
 TEST(SphDustLaws, NegativeFloorAccounting) {
