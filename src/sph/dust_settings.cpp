@@ -87,6 +87,11 @@ void DustSettings::declare(core::DeckSchema& s) {
           "Use min(t_sj, h / c_s) in the dust terms (the flux limiter of Ballabio et al. 2018): caps the "
           "drift where the stopping length exceeds the resolution and the terminal-velocity approximation "
           "fails (the low-density gas above a disc column).");
+  s.boolean("dust.write_velocities")
+      .default_value(false)
+      .doc(
+          "Snapshots also hold dust_velocity: v_dj = v_g + Dv_j of every species (HPL18 eq. 24-25), "
+          "3N components per particle, v_dj along axis d in column 3 j + d.");
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {
@@ -118,6 +123,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   s.floor_negative = d.boolean("dust.floor_negative");
   s.project_mass = d.boolean("dust.project_mass");
   s.limit_ts = d.boolean("dust.limit_stopping_time");
+  s.write_velocities = d.boolean("dust.write_velocities");
   s.validate();
   return s;
 }

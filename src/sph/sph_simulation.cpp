@@ -94,6 +94,13 @@ void SphSimulation::write_snapshot(io::SnapshotWriter& out) const {
     }
     out.particle_field("dust_fraction", eps.data(), ns, {"1", 1.0});
     out.particle_field("gas_velocity", vg.data(), 3, {"code velocity", units_.velocity()});
+    if (dust->settings().write_velocities) {
+      std::vector<double> vd(static_cast<size_t>(n) * ns * 3, 0.0);  // v_dj = v_g + Dv_j, column 3 j + d
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < ns; ++k)
+          for (int d = 0; d < dim; ++d) vd[(static_cast<size_t>(i) * ns + k) * 3 + d] = ds.v_gas(i, d) + ds.dv(i, k, d);
+      out.particle_field("dust_velocity", vd.data(), 3 * ns, {"code velocity", units_.velocity()});
+    }
   }
   std::vector<std::int32_t> type(snap.type.data(), snap.type.data() + n), id(snap.id.data(), snap.id.data() + n);
   out.particle_field("type", type.data(), {"1", 1.0});
