@@ -3,6 +3,7 @@
 
     check.py RUN_DIR [--plot FILE.png] [--orbits 10 20 30 40] [--front-tol 0.05]
              [--mass-tol 1e-5] [--unfloored-tol 1e-12] [--table2]
+             [--references]
 
 References, computed here from the resolved deck (independent of the C++ code):
   * gas: the static isothermal column in hydrostatic equilibrium with eq. 53 of
@@ -37,7 +38,18 @@ Metrics:
     Table 2 density column. Also printed (not part of PASS/FAIL): the same
     against the exact solution by characteristics, which keeps the sharp
     edge and pile-up of each settled layer that the implicit grid solution
-    smears.
+    smears; and against HPL18's own scheme of app. A2 (Crank-Nicolson,
+    centred differences, 1002 points on [-3H, 3H], a step of 1 / Omega0),
+    the reference of Table 2, with SPLASH's convention for particles beyond it.
+  * with dust.write_velocities: per species, L2 / max of the dust velocity
+    v_dj against eq. A5 over the particles in |z| <= 3H (HPL18 Table 2,
+    velocity column; printed); for one species, dust_velocity must equal the
+    barycentric reconstruction v_g + (v - v_g) / eps where the dust is.
+  * --references: the three 1D solutions against one another at the last
+    snapshot, per species: L2 / max of the grid and Crank-Nicolson solutions
+    against the exact one (each <= 5e-2), the dust mass of each over the
+    initial column's (exact and grid within 2e-3, Crank-Nicolson, which is not
+    conservative at its edges, within 2e-2).
 Prints PASS/FAIL lines and a final PASS or FAIL; exits non-zero on failure.
 """
 import argparse
@@ -53,6 +65,8 @@ import mote  # noqa: E402
 
 # HPL18 Table 2, L2 density errors (column 2) for the sizes of Table 1.
 TABLE2 = [4.93e-3, 4.90e-3, 4.81e-3, 5.10e-3, 5.06e-3, 6.44e-2, 1.24e-2, 3.44e-2, 7.89e-2, 9.43e-2]
+# and the velocity column (3) against eq. A5.
+TABLE2_VELOCITY = [1.47, 5.27e-1, 1.89e-1, 6.80e-2, 2.45e-2, 8.90e-3, 3.50e-3, 1.92e-3, 1.61e-3, 1.57e-3]
 
 
 class Column:
@@ -158,6 +172,76 @@ class Column:
             out.append(rho.copy())
         return zc, out
 
+    def solve_1d_cn(self, j, t_end, npts=1002, dtbar=1.0):
+        """HPL18 app. A2 as published, for comparison with Table 2: Crank-Nicolson with centred
+        differences on 1002 points spanning [-3H, 3H], a dimensionless step of 1, the advecting
+        velocity predicted then corrected, v = 0 and eq. A8 at +-3H, and rho_d set to zero beyond
+        the first empty point on either side of the mid-plane. Returns (z, rho_d)."""
+        z = np.linspace(-3 * self.H, 3 * self.H, npts)
+        dz, n = z[1] - z[0], npts
+        inv_ts = 1.0 / (self.stokes(j, np.abs(z)) / self.omega)
+        g = self.gm * z / (self.r0**2 + z**2) ** 1.5
+        rho = self.eps[j] / (1 - self.eps.sum()) * self.rho_gas(np.abs(z))
+        v = np.zeros(n)
+
+        def centred(f):
+            d = np.empty(n)
+            d[1:-1] = (f[2:] - f[:-2]) / (2 * dz)
+            d[0], d[-1] = (f[1] - f[0]) / dz, (f[-1] - f[-2]) / dz  # one-sided at +-3H (eq. A8)
+            return d
+
+        def tridiag(lo, di, up, rhs):
+            ab = np.zeros((3, n))
+            ab[0, 1:], ab[1], ab[2, :-1] = up[:-1], di, lo[1:]
+            return solve_banded((1, 1), ab, rhs)
+
+        def density(v_new, v_old, h):
+            # rho_t + v rho_z + rho v_z = 0, both terms averaged over the two time levels.
+            lo, up = np.zeros(n), np.zeros(n)
+            lo[1:-1], up[1:-1] = -0.25 * h * v_new[1:-1] / dz, 0.25 * h * v_new[1:-1] / dz
+            rhs = rho - 0.5 * h * (v_old * centred(rho) + rho * centred(v_old))
+            return tridiag(lo, 1 + 0.5 * h * centred(v_new), up, rhs)
+
+        def velocity(adv_new, adv_old, h):
+            # v_t + adv v_z = -v / t_s - g, v = 0 at +-3H.
+            lo, up, di, rhs = np.zeros(n), np.zeros(n), np.ones(n), np.zeros(n)
+            lo[1:-1], up[1:-1] = -0.25 * h * adv_new[1:-1] / dz, 0.25 * h * adv_new[1:-1] / dz
+            di[1:-1] = 1 + 0.5 * h * inv_ts[1:-1]
+            rhs[1:-1] = (v * (1 - 0.5 * h * inv_ts) - 0.5 * h * adv_old * centred(v) - h * g)[1:-1]
+            return tridiag(lo, di, up, rhs)
+
+        t, dt = 0.0, dtbar / self.omega
+        while t < t_end * (1 - 1e-12):
+            h = min(dt, t_end - t)
+            v_pred = velocity(v, v, h)
+            rho = density(v_pred, v, h)
+            v = velocity(v_pred, v, h)
+            t += h
+        mid = n // 2
+        for side in (slice(mid, None), slice(mid - 1, None, -1)):
+            r = rho[side]
+            empty = np.flatnonzero(r <= 0.0)
+            if empty.size:
+                r[empty[0]:] = 0.0
+        return z, rho
+
+def reference_agreement(col, t, nz=6001):
+    """Cross-check of the three 1D references at time t, per species: L2 / max of the implicit grid
+    solution and of the Crank-Nicolson one against the exact solution by characteristics on
+    [0, 3H], and the dust mass of each over the initial column's."""
+    zs = np.linspace(0.0, 3 * col.H, nz)
+    rows = []
+    for j in range(len(col.eps)):
+        zx, rx = col.characteristics(j, t)
+        exact = np.interp(zs, zx, rx, right=0.0)
+        zg, (rg,) = col.solve_1d(j, [t])
+        zc, rc = col.solve_1d_cn(j, t)
+        grid, cn = np.interp(zs, zg, rg), np.interp(zs, zc, rc)
+        m0 = np.trapz(col.eps[j] / (1 - col.eps.sum()) * col.rho_gas(zs), zs)
+        rows.append([np.sqrt(np.mean((f - exact) ** 2)) / exact.max() for f in (grid, cn)]
+                    + [np.trapz(f, zs) / m0 for f in (exact, grid, cn)])
+    return np.array(rows)
+
 
 def power_law(du):
     """HPL18 sec. 4.3.1 / eq. 63: log cell edges, s_j = sqrt(edge product), eps_j from the integral."""
@@ -200,7 +284,10 @@ def load(path):
         rho = f["particles/density"][...]
         eps = f["particles/dust_fraction"][...].reshape(len(z), -1)
         v, vg = f["particles/velocity"][:, zax], f["particles/gas_velocity"][:, zax]
-    return snap, z, rho, eps, v, vg
+        vd = None  # v_dj along z per species, written with dust.write_velocities
+        if "dust_velocity" in f["particles"]:
+            vd = f["particles/dust_velocity"][...].reshape(len(z), -1, 3)[:, :, zax]
+    return snap, z, rho, eps, v, vg, vd
 
 
 def main():
@@ -212,6 +299,7 @@ def main():
     ap.add_argument("--mass-tol", type=float, default=1e-5)
     ap.add_argument("--unfloored-tol", type=float, default=1e-12)
     ap.add_argument("--table2", action="store_true")
+    ap.add_argument("--references", action="store_true")
     args = ap.parse_args()
     files = mote.list_snapshots(args.run_dir)
     snaps = [load(p) for p in files]
@@ -230,7 +318,7 @@ def main():
     if picks:
         zc, ref = col.solve_1d(int(np.argmax(col.eps)), [times[k] for k in picks])
         for o, k, r in zip(args.orbits, picks, ref):
-            snap, z, rho, eps, _, _ = snaps[k]
+            snap, z, rho, eps = snaps[k][:4]
             zs, fs = sph_profile(np.abs(z), eps.sum(axis=1) * rho, dz, 3 * col.H)
             f_sph, f_ref = front(zs, fs), col.top_edge(int(np.argmax(col.eps)), times[k])
             fronts.append((o, f_sph, f_ref, zs, fs, zc, r))
@@ -249,7 +337,7 @@ def main():
     if "tva_violations" in hist.dtype.names:
         print(f"particles where eps T_s exceeds the Courant time-step (terminal-velocity approximation fails, "
               f"PL15 eq. 18): at most {int(hist['tva_violations'].max())}, at the end {int(hist['tva_violations'][-1])}")
-    snap, z, rho, eps, v, vg = snaps[-1]
+    snap, z, rho, eps, v, vg, vd = snaps[-1]
     zc, refs, l2 = [], [], []
     for j in range(len(col.eps)):
         zj, (rj,) = col.solve_1d(j, [snap.time])
@@ -278,11 +366,45 @@ def main():
               + (f"; above Table 2 for species {', '.join(above)}" if above else "; all within Table 2"))
         print("  its parts (sum of squares split, each over all particles), interior / within 0.3 H of the "
               "layer's edge: " + " ".join(f"{a:.1e}/{b:.1e}" for a, b in split))
+        l2cn = []
+        for j in range(len(col.eps)):
+            zj, rj = col.solve_1d_cn(j, snap.time)
+            inside = np.abs(z) <= zj[-1]  # SPLASH: particles beyond the table count with zero residual
+            r = np.interp(z[inside], zj, rj)
+            l2cn.append(np.sqrt(np.sum((eps[inside, j] * rho[inside] - r) ** 2) / len(z)) / np.abs(r).max())
+        print("L2 density error per species against HPL18's own scheme (app. A2: Crank-Nicolson, 1002 points, "
+              "step 1 / Omega; SPLASH's L2): " + " ".join(f"{e:.2e}" for e in l2cn))
+    if args.references:
+        agree = reference_agreement(col, snap.time)
+        for j, (lg, lc, mx, mg, mc) in enumerate(agree):
+            print(f"species {j + 1} references at t = {snap.time / col.orbit:.2f} orbits: L2 / max against the exact "
+                  f"solution: grid {lg:.2e}, Crank-Nicolson {lc:.2e}; dust mass / initial: exact {mx:.5f}, "
+                  f"grid {mg:.5f}, Crank-Nicolson {mc:.5f}")
+        check(np.all(agree[:, :2] <= 0.05) and np.all(np.abs(agree[:, 2:4] - 1) <= 2e-3)
+              and np.all(np.abs(agree[:, 4] - 1) <= 0.02),
+              "the 1D references agree: grid and Crank-Nicolson within 5e-2 (L2 / max) of the exact solution, "
+              "exact and grid dust mass within 2e-3 and Crank-Nicolson within 2e-2 of the initial column's")
+    if vd is not None and snap.time > 0:  # eq. A5 vanishes at t = 0
+        column = np.abs(z) <= 3 * col.H
+        l2v = []
+        for j in range(len(col.eps)):
+            va5 = col.velocity_a5(j, z[column], snap.time)
+            l2v.append(np.sqrt(np.mean((vd[column, j] - va5) ** 2)) / np.abs(va5).max())
+        table = " ".join(f"{e:.2e}" for e in TABLE2_VELOCITY)
+        print("L2 velocity error per species against eq. A5 (SPLASH's L2 over the particles in |z| <= 3H"
+              + (f"; HPL18 Table 2, velocity column: {table}" if args.table2 else "") + "): "
+              + " ".join(f"{e:.2e}" for e in l2v))
     # Dust velocity of the single (or largest) species against eq. A5 where it holds dust.
     j = len(col.eps) - 1
     e_tot = eps.sum(axis=1)
     sel = (eps[:, j] > 0.1 * col.eps[j]) & (np.abs(z) < 3 * col.H)
     v_dust = vg + (v - vg) / np.maximum(e_tot, 1e-300) if len(col.eps) == 1 else None
+    if vd is not None and v_dust is not None and sel.any():
+        # One species: v = v_g + eps Dv, so the barycentric velocity gives v_d back.
+        dev = np.abs(vd[sel, j] - v_dust[sel]).max() / np.abs(v_dust[sel]).max()
+        check(dev <= 1e-8, f"dust_velocity equals v_g + (v - v_g) / eps where the dust is (max deviation {dev:.1e})")
+    if vd is not None:
+        v_dust = vd[:, j]
     if v_dust is not None and sel.any():
         va5 = col.velocity_a5(j, z[sel], snap.time)
         l2v = np.sqrt(np.mean((v_dust[sel] - va5) ** 2)) / np.abs(va5).max()
