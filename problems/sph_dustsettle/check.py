@@ -410,24 +410,28 @@ def main():
         l2v = np.sqrt(np.mean((v_dust[sel] - va5) ** 2)) / np.abs(va5).max()
         print(f"dust velocity vs HPL18 eq. A5 at t = {snap.time / col.orbit:.2f} orbits: L2 / max = {l2v:.2e}")
     if args.plot:
-        plot(args.plot, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel)
+        plot(args.plot, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel, vd)
     print("PASS" if ok else "FAIL")
     return 0 if ok else 1
 
 
-def plot(path, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel):
+def plot(path, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel, vd):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    ncol = 3 if fronts else 2  # no front panel when no --orbits are checked
+    fig, axes = plt.subplots(1, ncol, figsize=(5 * ncol, 4.5))
+    if not fronts:
+        axes = [None, *axes]
     for o, f_sph, f_ref, zs, fs, zr, r in fronts:
         (line,) = axes[0].plot(zs / col.H, fs, ".", ms=4, label=f"SPH {o:g} orbits")
         axes[0].plot(zr / col.H, r, "-", color=line.get_color(), lw=1)
         axes[0].axvline(f_ref / col.H, color=line.get_color(), lw=0.5, ls=":")
-    axes[0].set(xlim=(0, 1.5), xlabel="|z| / H", ylabel="rho_d (code)", title="A5: SPH (bins) vs 1D solution (lines)")
     if fronts:
+        axes[0].set(xlim=(0, 1.5), xlabel="|z| / H", ylabel="rho_d (code)",
+                    title="A5: SPH (bins) vs 1D solution (lines)")
         axes[0].legend(fontsize=7)
     for j in range(len(col.eps)):
         (line,) = axes[1].semilogy(np.abs(z) / col.H, np.maximum(eps[:, j] * rho, 1e-30), ".", ms=1)
@@ -435,14 +439,21 @@ def plot(path, col, fronts, snap, z, rho, eps, zc, refs, v_dust, sel):
     top = max(r.max() for r in refs)
     axes[1].set(xlim=(0, 3), ylim=(1e-6 * top, 3 * top), xlabel="|z| / H", ylabel="rho_d,j",
                 title=f"particles vs 1D solution, {snap.time / col.orbit:.1f} orbits")
-    if v_dust is not None and sel.any():
+    if vd is not None and len(col.eps) > 1:
+        zz = np.linspace(0.0, 3 * col.H, 301)
+        up = z > 0  # the upper half: settling velocities are negative there
+        for j in range(len(col.eps)):
+            (line,) = axes[2].semilogy(z[up] / col.H, np.maximum(-vd[up, j], 1e-30), ".", ms=1)
+            axes[2].semilogy(zz / col.H, -col.velocity_a5(j, zz, snap.time), "-", color=line.get_color(), lw=1)
+        axes[2].set(xlim=(0, 3), ylim=(1e-8, 1.0), xlabel="z / H", ylabel="-v_z,dj (code), z > 0",
+                    title="dust velocities (points) vs HPL18 eq. A5 (lines)")
+    elif v_dust is not None and sel.any():
         zz = np.linspace(-3 * col.H, 3 * col.H, 601)
         axes[2].plot(z[sel] / col.H, v_dust[sel], ".", ms=2, label="SPH v_g + Dv")
         axes[2].plot(zz / col.H, col.velocity_a5(len(col.eps) - 1, zz, snap.time), "-", label="HPL18 eq. A5")
         axes[2].set(xlabel="z / H", ylabel="v_z,dust (code)", title="dust velocity")
         axes[2].legend(fontsize=7)
-    axes[0].set_visible(bool(fronts))
-    axes[2].set_visible(v_dust is not None and sel.any())
+    axes[2].set_visible((vd is not None and len(col.eps) > 1) or (v_dust is not None and sel.any()))
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     print(f"wrote {path}")
