@@ -7,8 +7,10 @@
 
 References, computed here from the resolved deck (independent of the C++ code):
   * gas: the static isothermal column in hydrostatic equilibrium with eq. 53 of
-    PL15, rho_g ~ exp(-(GM/c_s^2)(1/R0 - 1/sqrt(R0^2 + z^2))), with the column
-    mass of the set-up (eq. 55 integrated over [-3H, 3H]); no back-reaction;
+    PL15, rho_g ~ exp(-(GM/c_s^2)(1/R0 - 1/sqrt(R0^2 + z^2))), holding the
+    column mass of the set-up (eq. 55 integrated over the initial lattice,
+    [-3H, 3H] or [-settle.zmax H, settle.zmax H]) over its whole extent, the
+    0.3 % above 3H included as the relaxed SPH gas has it; no back-reaction;
   * Stokes number St_j(z) = t_s Omega0 with the Epstein time of the gas,
     t_s = rho_grain s sqrt(pi/8) / (rho_g c_s) (PL15 eq. 20; HPL18 eq. 12-14);
   * analytic dust velocity, HPL18 eq. A5: v = St z/(1 + z^2)^(3/2) (exp(-t/St) - 1)
@@ -92,11 +94,14 @@ class Column:
             self.sizes = self.sizes / u["length_cm"]
             rho_grain = rho_grain / (u["mass_g"] / u["length_cm"] ** 3)
         self.rho_eff = rho_grain * np.sqrt(np.pi / 8)
-        # Static hydrostatic gas of eq. 53 with the set-up's column mass (eq. 55 over [-3H, 3H]).
-        zq = np.linspace(0.0, 3 * self.H, 20001)
+        # Static hydrostatic gas of eq. 53 with the set-up's column mass (eq. 55 over the initial
+        # lattice, [-zmax H, zmax H]), spread over the whole equilibrium: 0.30 % of it lies above 3H,
+        # as 0.32-0.34 % of the relaxed SPH gas does (3D column, 25 across).
+        zq = np.linspace(0.0, 10 * self.H, 200001)
         shape = np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + zq**2)))
-        gauss = self.rho0 * np.exp(-zq**2 / (2 * self.H**2))
-        self.rhog_mid = np.trapz(gauss, zq) / np.trapz(shape, zq) * (1 - self.eps.sum())
+        zl = np.linspace(0.0, st.get("zmax", 3.0) * self.H, 20001)
+        gauss = self.rho0 * np.exp(-zl**2 / (2 * self.H**2))
+        self.rhog_mid = np.trapz(gauss, zl) / np.trapz(shape, zq) * (1 - self.eps.sum())
 
     def rho_gas(self, z):
         return self.rhog_mid * np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + z**2)))

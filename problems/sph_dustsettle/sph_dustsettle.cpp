@@ -77,6 +77,11 @@ void declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .unit("code length")
       .doc("Periodic extent of x (and y in 3D); the lattice spacing is width / nx.");
+  s.real("settle.zmax")
+      .default_value(3.0)
+      .greater_than(0.0)
+      .unit("H")
+      .doc("Half-height of the initial lattice (3: PL15; 2.6: HPL18's 3D column, z in [-0.65, 0.65]).");
   s.real("settle.rho0")
       .default_value(1e-3)
       .greater_than(0.0)
@@ -106,6 +111,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   c.nx = static_cast<int>(d.integer("settle.nx"));
   c.dim = static_cast<int>(d.integer("settle.dim"));
   c.width = d.real("settle.width");
+  c.z_max = d.real("settle.zmax");
   c.rho0 = d.real("settle.rho0");
   c.r0 = d.real("settle.R0");
   c.h_over_r = d.real("settle.H_over_R");

@@ -29,6 +29,7 @@ std::unique_ptr<SphSystem> RelaxedColumn::make_system() const {
 RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg,
                                     const std::function<void(const SphSystem&)>& after_step) {
   if (c.dim != 2 && c.dim != 3) throw std::invalid_argument("settling column: dim must be 2 or 3");
+  if (!(c.z_max > 0.0)) throw std::invalid_argument("settling column: z_max must be positive");
   const Real H = c.scale_height();
   const int dim = c.dim, zax = dim - 1;
   cfg.dim = dim;
@@ -41,8 +42,8 @@ RelaxedColumn relax_settling_column(const SettlingColumn& c, SphConfig cfg,
     box.hi[d] = 0.5 * c.width;
     box.periodic[d] = true;
   }
-  box.lo[zax] = -3.0 * H;
-  box.hi[zax] = 3.0 * H;
+  box.lo[zax] = -c.z_max * H;
+  box.hi[zax] = c.z_max * H;
   const Real dx = c.width / c.nx;
   Lattice lat = dim == 2 ? hexagonal_lattice(box, dx) : close_packed_lattice(box, dx);
   auto rho = [&c](Real z) { return c.gas_density(z); };

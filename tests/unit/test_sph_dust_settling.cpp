@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "mote/sph/settling_column.hpp"
@@ -36,13 +37,14 @@ double reference_front(double t_end, double rho0_gauss, double H, double cs, dou
                        double eps0) {
   const int np = 6000;
   const double zmax = 3.0 * H;
-  // Exact isothermal hydrostatic gas for eq. 53, with the column mass of the Gaussian (eq. 55).
+  // Exact isothermal hydrostatic gas for eq. 53, with the column mass of the Gaussian (eq. 55
+  // over the lattice, [0, 3H]) spread over the whole equilibrium (0.3 % of it above 3H).
   auto shape = [&](double z) { return std::exp(-gm / (cs * cs) * (1.0 / r0 - 1.0 / std::sqrt(r0 * r0 + z * z))); };
   double mg = 0.0, mgauss = 0.0;
   const int nq = 20000;
   for (int i = 0; i < nq; ++i) {
-    const double z = (i + 0.5) * zmax / nq;
-    mg += shape(z) * zmax / nq;
+    const double z = (i + 0.5) * zmax / nq, zw = (i + 0.5) * 10.0 * H / nq;
+    mg += shape(zw) * 10.0 * H / nq;
     mgauss += rho0_gauss * std::exp(-z * z / (2 * H * H)) * zmax / nq;
   }
   const double rhog0 = mgauss / mg;
@@ -251,8 +253,9 @@ TEST(SphDustSettling, ShortColumnProjectionRemovesTheSurplusOfTheSUpdate) {
 // The 3D column of HPL18 (settle.dim = 3): a close-packed lattice stretched in z,
 // x and y periodic, relaxed with damping. Returns the rms of rho / rho_eq - 1
 // within 2H, rho_eq the equilibrium of the gravity of eq. 53, rho ~ exp(-(GM /
-// c_s^2)(1/R0 - 1/sqrt(R0^2 + z^2))), with the column mass of eq. 55 over [-3H,
-// 3H] (what check.py compares with); checks the column mass and the residual motion.
+// c_s^2)(1/R0 - 1/sqrt(R0^2 + z^2))), holding the column mass of eq. 55 over
+// [-3H, 3H] over its whole extent (what check.py compares with); checks the
+// column mass and the residual motion.
 double column_3d_density_error(int nx) {
   SettlingColumn col;
   col.dim = 3;
@@ -269,8 +272,8 @@ double column_3d_density_error(int nx) {
   double num = 0.0, den = 0.0;
   for (int k = 0; k <= 20000; ++k) {
     const Real z = -3.0 * H + 6.0 * H * k / 20000.0, w = (k == 0 || k == 20000) ? 0.5 : 1.0;
-    num += w * col.gas_density(z);
-    den += w * shape(z);
+    num += w * col.gas_density(z) * 6.0 * H;
+    den += w * shape(10.0 * z / 3.0) * 20.0 * H;  // the equilibrium over [-10H, 10H]
   }
   double mass = 0.0, err2 = 0.0, err_max = 0.0;
   int inner = 0;
@@ -297,8 +300,45 @@ double column_3d_density_error(int nx) {
 
 TEST(SphDustSettling, ThreeDimensionalColumnIsHydrostatic) {
   const double e6 = column_3d_density_error(6), e8 = column_3d_density_error(8);
-  EXPECT_LT(e8, 0.02);      // measured 1.59e-2 (M4, h = 1.2 dx, h ~ 0.3 H at the mid-plane)
-  EXPECT_GT(e6 / e8, 1.4);  // converges: measured 1.60 (order 1.6 in the spacing)
+  EXPECT_LT(e8, 0.02);      // measured 1.47e-2 (M4, h = 1.2 dx, h ~ 0.3 H at the mid-plane)
+  EXPECT_GT(e6 / e8, 1.4);  // converges: measured 1.66 (order 1.8 in the spacing)
+}
+
+// settle.zmax: HPL18 place their lattice in z in [-0.65, 0.65] = [-2.6H, 2.6H]
+// before stretching it. Unrelaxed, the particles carry the mass of eq. 55 over
+// that slab, and the stretched layers follow its Gaussian: the top layer sits
+// where the mass above it is half a layer's.
+TEST(SphDustSettling, LatticeHalfHeightSetsTheColumn) {
+  SettlingColumn col;
+  col.nx = 16;
+  col.z_max = 2.6;
+  col.relax_time = 0.0;
+  SphConfig cfg;
+  cfg.kernel = KernelType::M6;
+  const RelaxedColumn rc = relax_settling_column(col, cfg);
+  const Real H = col.scale_height();
+  const auto& p = rc.particles;
+  const int n = static_cast<int>(p.m.size());
+  double mass = 0.0, zmax = 0.0;
+  for (int i = 0; i < n; ++i) {
+    mass += p.m[i];
+    zmax = std::max(zmax, std::fabs(p.x[2 * i + 1]));
+  }
+  const double slab = std::erf(2.6 / std::sqrt(2.0));
+  const double mass_ref = rc.box.length(0) * std::sqrt(2.0 * M_PI) * H * col.rho0 * slab;
+  const int layers = n / col.nx;
+  double lo = 0.0, hi = 2.6;  // top layer: erf(z / sqrt 2) = slab (1 - 1 / layers), by bisection
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erf(mid / std::sqrt(2.0)) < slab * (1.0 - 1.0 / layers) ? lo : hi) = mid;
+  }
+  std::printf("[column z_max 2.6H] %d particles in %d layers, top at %.4f H (expected %.4f H), mass / eq. 55 - 1 = "
+              "%.1e\n",
+              n, layers, zmax / H, lo, mass / mass_ref - 1.0);
+  EXPECT_NEAR(zmax / H, lo, 0.01);
+  EXPECT_NEAR(mass / mass_ref, 1.0, 1e-6);
+  col.z_max = 0.0;
+  EXPECT_THROW(relax_settling_column(col, cfg), std::invalid_argument);
 }
 
 // VALIDATION A5 (full): 32 x 111 column, settling front vs the 1D reference at

@@ -2,7 +2,8 @@
 // sec. 4.4.1, eq. 53-57; HPL18 sec. 4.3.1; VALIDATION A5-A6), shared by
 // problems/sph_dustsettle and the unit tests: a 2D (x, z) slab as PL15, x
 // periodic over [-width/2, width/2], or a 3D (x, y, z) column as HPL18, x and
-// y periodic over that width; z (the last axis) in [-3H, 3H] free, isothermal
+// y periodic over that width; z (the last axis) free, the lattice in
+// [-z_max H, z_max H] (3H as PL15; HPL18 place theirs in +-0.65 = +-2.6H), isothermal
 // with c_s = H Omega0, vertical gravity a_z = -z GM / (R0^2 + z^2)^(3/2) (eq.
 // 53), a hexagonal (2D) or close-packed (3D) lattice of nx particles across x
 // stretched to rho0 exp(-z^2 / 2H^2) (eq. 54-55) with equal masses, relaxed
@@ -24,6 +25,7 @@ struct SettlingColumn {
   int nx = 32;       ///< particles across x (32: the 32 x 111 column)
   int dim = 2;       ///< 2: (x, z) slab (PL15); 3: (x, y, z) column (HPL18)
   Real width = 0.5;  ///< periodic extent of x (and y in 3D), code length
+  Real z_max = 3.0;  ///< half-height of the initial lattice, in units of H
   Real gm = 1.0, r0 = 5.0, h_over_r = 0.05, rho0 = 1e-3;
   Real relax_time = 1000.0, relax_damping = 0.03;
 
