@@ -10,7 +10,25 @@
 # Both are repaired here on the imported targets, never in system files.
 
 find_package(Kokkos REQUIRED)
-find_package(KokkosKernels REQUIRED)
+# Kokkos Kernels from the same prefix as Kokkos unless KokkosKernels_ROOT says
+# otherwise: a Kokkos Kernels built against another Kokkos (Debian's) must not
+# be picked up from the system paths.
+get_filename_component(_mote_kokkos_prefix "${Kokkos_DIR}/../../.." ABSOLUTE)
+find_package(KokkosKernels REQUIRED HINTS "${_mote_kokkos_prefix}")
+if(DEFINED Kokkos_VERSION AND DEFINED KokkosKernels_VERSION AND NOT TARGET trilinos_kokkoskernels)
+  string(REGEX MATCH "^[0-9]+\\.[0-9]+" _mote_k_major_minor "${Kokkos_VERSION}")
+  string(REGEX MATCH "^[0-9]+\\.[0-9]+" _mote_kk_major_minor "${KokkosKernels_VERSION}")
+  if(NOT _mote_k_major_minor STREQUAL _mote_kk_major_minor)
+    message(FATAL_ERROR "Kokkos ${Kokkos_VERSION} (${Kokkos_DIR}) with Kokkos Kernels ${KokkosKernels_VERSION} "
+                        "(${KokkosKernels_DIR}): install Kokkos Kernels of the same release into the Kokkos prefix "
+                        "or point -DKokkosKernels_ROOT at one")
+  endif()
+endif()
+if(TARGET trilinos_kokkoskernels AND DEFINED Kokkos_VERSION AND Kokkos_VERSION VERSION_GREATER_EQUAL 4.0)
+  message(FATAL_ERROR "Kokkos ${Kokkos_VERSION} (${Kokkos_DIR}) was found with Trilinos' Kokkos Kernels "
+                      "(${KokkosKernels_DIR}), which is built against Kokkos 3.4: install Kokkos Kernels of the "
+                      "same release into the Kokkos prefix or point -DKokkosKernels_ROOT at one")
+endif()
 
 if(TARGET Kokkos::kokkos)
   get_target_property(_mote_kokkos_inc Kokkos::kokkos INTERFACE_INCLUDE_DIRECTORIES)

@@ -62,7 +62,7 @@ class CoagKernels final : public coag::StandaloneCells {
       num += std::fabs(rho[k] - ref);
       den += ref;
     }
-    mote::log::info(mote::log::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, ",
+    mote::logging::info(mote::logging::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, ",
                                       p_.kernel.c_str(), elapsed_, grid_.bins_per_mass_decade(), num / den),
                     summary());
   }

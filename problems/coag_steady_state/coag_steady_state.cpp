@@ -68,7 +68,7 @@ class CoagSteadyState final : public coag::StandaloneCells {
                         {"g/cm^2", 1.0}) {
     const Real cs = sound_speed(p, s);
     const Real st_frag = s.v_frag * s.v_frag / (3 * p.alpha * cs * cs);
-    mote::log::info(mote::log::format("coag_steady_state: c_s = %.4e cm/s, St_frag = %.3e, "
+    mote::logging::info(mote::logging::format("coag_steady_state: c_s = %.4e cm/s, St_frag = %.3e, "
                                       "a_frag = 2 Sigma_g St_frag / (pi rho_m) = %.3e cm",
                                       cs, st_frag, 2 * p.sigma_gas * st_frag / (M_PI * s.rho_m)));
   }
@@ -88,7 +88,7 @@ class CoagSteadyState final : public coag::StandaloneCells {
   }
 
   void finish(double time) override {
-    mote::log::info(mote::log::format("coag_steady_state: t = %.4e yr, ", time / cgs::year), summary());
+    mote::logging::info(mote::logging::format("coag_steady_state: t = %.4e yr, ", time / cgs::year), summary());
   }
 };
 

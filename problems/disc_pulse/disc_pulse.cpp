@@ -36,6 +36,12 @@ class DiscPulse final : public io::Simulation {
     Kokkos::deep_copy(gas.cs2, 1.0);
     Kokkos::deep_copy(gas.nu, pulse.D);
     dust_.set_gas(gas);
+    set_initial_pulse();
+  }
+
+  /// The pulse of eq. 38 at t = 0 in every cell (above the floor). Not in the
+  /// constructor: nvcc does not allow extended lambdas there.
+  void set_initial_pulse() {
     auto W = dust_.W;
     auto Rc = grid_.Rc, tan_tc = grid_.tan_tc;
     const Pulse p = pulse_;
@@ -87,11 +93,11 @@ class DiscPulse final : public io::Simulation {
         if (!math::isfinite(Q(i, j, 0, k))) f = math::min(f, (i - ng) * nt + (j - ng));
     }, Kokkos::Min<int>(first));
     if (first == std::numeric_limits<int>::max()) return std::nullopt;
-    return io::NonFinite{"dust Q", log::format("cell (i, j) = (%d, %d)", first / nt + grid_.i_offset, first % nt)};
+    return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d)", first / nt + grid_.i_offset, first % nt)};
   }
 
   void finish(double) override {
-    log::info(log::format("L2 error (RBO24 sec. 3.6 norm): %.6e on %d x %d cells", l2_error(), grid_.nr_global, grid_.nt));
+    logging::info(logging::format("L2 error (RBO24 sec. 3.6 norm): %.6e on %d x %d cells", l2_error(), grid_.nr_global, grid_.nt));
   }
 
  private:

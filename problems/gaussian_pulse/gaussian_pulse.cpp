@@ -56,8 +56,8 @@ struct Params {
   Real amplitude = 1, t0 = 1, x0 = 0.5, y0 = 0.5, background = 0;
   Real cfl = 0.4;
   Limiter limiter = Limiter::None;
-  Real dx() const { return (x_max - x_min) / nx; }
-  Real dy() const { return (y_max - y_min) / ny; }
+  KOKKOS_INLINE_FUNCTION Real dx() const { return (x_max - x_min) / nx; }
+  KOKKOS_INLINE_FUNCTION Real dy() const { return (y_max - y_min) / ny; }
 };
 
 /// Analytic solution at cell centre (x, y) and run time tau (pulse time t0 + tau).
@@ -81,17 +81,27 @@ class GaussianPulse final : public mote::io::Simulation {
     rows_ = base + (comm.rank() < extra ? 1 : 0);
     row_begin_ = comm.rank() * base + std::min(comm.rank(), extra);
     if (rows_ < kGhost)
-      throw mote::core::DeckError(mote::log::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost, " rows on each of ",
+      throw mote::core::DeckError(mote::logging::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost, " rows on each of ",
                                                  comm.size(), " ranks; increase grid.ny or use fewer ranks"));
     rho_ = RealView2("density", rows_ + 2 * kGhost, p.nx + 2 * kGhost);
     stage_ = RealView2("density_stage", rows_ + 2 * kGhost, p.nx + 2 * kGhost);
     rhs_ = RealView2("rhs", rows_, p.nx);
     halo_send_ = mote::RealView1("halo_send", 2 * kGhost * (p.nx + 2 * kGhost));
     halo_recv_ = mote::RealView1("halo_recv", 2 * kGhost * (p.nx + 2 * kGhost));
+    halo_send_h_ = Kokkos::create_mirror_view(halo_send_);
+    halo_recv_h_ = Kokkos::create_mirror_view(halo_recv_);
+    set_initial_density();
+  }
+
+  // Kernels live in public member functions: nvcc does not allow extended
+  // lambdas in constructors or in private member functions.
+
+  /// The analytic solution at t = 0 on the interior.
+  void set_initial_density() {
     const Params q = p_;
     const int j0 = row_begin_;
     auto rho = rho_;
-    mote::par_for("gaussian_pulse::init", 0, rows_, 0, p.nx, KOKKOS_LAMBDA(int j, int i) {
+    mote::par_for("gaussian_pulse::init", 0, rows_, 0, q.nx, KOKKOS_LAMBDA(int j, int i) {
       const Real x = q.x_min + (i + 0.5) * q.dx(), y = q.y_min + (j0 + j + 0.5) * q.dy();
       rho(j + kGhost, i + kGhost) = analytic(q, x, y, 0.0);
     });
@@ -163,7 +173,7 @@ class GaussianPulse final : public mote::io::Simulation {
                      Kokkos::Min<int>(first));
     if (first == INT_MAX) return std::nullopt;
     const int j = first / nx + row_begin_, i = first % nx;
-    return mote::io::NonFinite{"density", mote::log::format("cell (i, j) = (%d, %d), x = %g, y = %g", i, j,
+    return mote::io::NonFinite{"density", mote::logging::format("cell (i, j) = (%d, %d), x = %g, y = %g", i, j,
                                                             p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (j + 0.5) * p_.dy())};
   }
 
@@ -177,24 +187,7 @@ class GaussianPulse final : public mote::io::Simulation {
         peak = std::max(peak, std::fabs(ref));
       }
     const double l2 = std::sqrt(comm_.sum(sq) / (double(p_.nx) * p_.ny)) / comm_.max(peak);
-    mote::log::info(mote::log::format("L2_rel error against the analytic solution: %.6e (nx = %d, ny = %d)", l2, p_.nx, p_.ny));
-  }
-
- private:
-  mote::io::Block block() const {
-    mote::io::Block b;
-    b.global_dims = {hsize_t(p_.ny), hsize_t(p_.nx)};
-    b.offset = {hsize_t(row_begin_), 0};
-    b.count = {hsize_t(rows_), hsize_t(p_.nx)};
-    return b;
-  }
-
-  std::vector<double> interior_to_host(const RealView2& v) const {
-    auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
-    std::vector<double> out(static_cast<size_t>(rows_) * p_.nx);
-    for (int j = 0; j < rows_; ++j)
-      for (int i = 0; i < p_.nx; ++i) out[j * p_.nx + i] = host(j + kGhost, i + kGhost);
-    return out;
+    mote::logging::info(mote::logging::format("L2_rel error against the analytic solution: %.6e (nx = %d, ny = %d)", l2, p_.nx, p_.ny));
   }
 
   /// Fills ghost columns (periodic in x, local) and ghost rows (periodic in y, via neighbours).
@@ -210,18 +203,21 @@ class GaussianPulse final : public mote::io::Simulation {
       send(g * width + i) = u(kGhost + g, i);
       send((kGhost + g) * width + i) = u(rows + g, i);
     });
-    auto host_send = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), send);
-    const size_t half = static_cast<size_t>(kGhost) * width;
-    std::vector<double> low(host_send.data(), host_send.data() + half), high(host_send.data() + half, host_send.data() + 2 * half);
-    std::vector<double> from_above(half), from_below(half);
-    const int below = (comm_.rank() - 1 + comm_.size()) % comm_.size(), above = (comm_.rank() + 1) % comm_.size();
-    comm_.sendrecv(low, below, from_above, above, 11);   // my low rows go down; I receive the upper rank's low rows
-    comm_.sendrecv(high, above, from_below, below, 12);  // my high rows go up; I receive the lower rank's high rows
-    auto host_recv = Kokkos::create_mirror_view(halo_recv_);
-    std::copy(from_below.begin(), from_below.end(), host_recv.data());
-    std::copy(from_above.begin(), from_above.end(), host_recv.data() + half);
-    Kokkos::deep_copy(halo_recv_, host_recv);
     auto recv = halo_recv_;
+    const int half = kGhost * width;
+    if (comm_.size() == 1) {  // periodic onto itself: stays on the device
+      mote::par_for("gaussian_pulse::wrap_halo", 0, half, KOKKOS_LAMBDA(int k) {
+        recv(k) = send(half + k);
+        recv(half + k) = send(k);
+      });
+    } else {  // the buffers travel through host memory (no GPU-aware MPI needed)
+      Kokkos::deep_copy(halo_send_h_, send);
+      const int below = (comm_.rank() - 1 + comm_.size()) % comm_.size(), above = (comm_.rank() + 1) % comm_.size();
+      // My low rows go down and I receive the upper rank's low rows; my high rows go up.
+      comm_.sendrecv(halo_send_h_.data(), half, below, halo_recv_h_.data() + half, half, above, 11);
+      comm_.sendrecv(halo_send_h_.data() + half, half, above, halo_recv_h_.data(), half, below, 12);
+      Kokkos::deep_copy(recv, halo_recv_h_);
+    }
     mote::par_for("gaussian_pulse::unpack_halo", 0, kGhost, 0, width, KOKKOS_LAMBDA(int g, int i) {
       u(g, i) = recv(g * width + i);
       u(rows + kGhost + g, i) = recv((kGhost + g) * width + i);
@@ -252,12 +248,30 @@ class GaussianPulse final : public mote::io::Simulation {
     });
   }
 
+ private:
+  mote::io::Block block() const {
+    mote::io::Block b;
+    b.global_dims = {hsize_t(p_.ny), hsize_t(p_.nx)};
+    b.offset = {hsize_t(row_begin_), 0};
+    b.count = {hsize_t(rows_), hsize_t(p_.nx)};
+    return b;
+  }
+
+  std::vector<double> interior_to_host(const RealView2& v) const {
+    auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+    std::vector<double> out(static_cast<size_t>(rows_) * p_.nx);
+    for (int j = 0; j < rows_; ++j)
+      for (int i = 0; i < p_.nx; ++i) out[j * p_.nx + i] = host(j + kGhost, i + kGhost);
+    return out;
+  }
+
   Params p_;
   mote::core::Comm comm_;
   int rows_ = 0, row_begin_ = 0;
   double tau_ = 0.0;
   RealView2 rho_, stage_, rhs_;
   mote::RealView1 halo_send_, halo_recv_;
+  mote::HostView<Real*> halo_send_h_, halo_recv_h_;
 };
 
 void declare(mote::core::DeckSchema& s) {

@@ -57,8 +57,8 @@ std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const co
     if (std::chrono::duration<double>(now - last).count() < interval) return;
     last = now;
     const double wall = std::chrono::duration<double>(now - start).count(), done = gas.time() / t_relax;
-    log::info(log::format("relax %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s", gas.steps(), gas.time(), gas.next_dt(),
-                          100.0 * done, log::hms(wall * (1.0 - done) / done).c_str()));
+    logging::info(logging::format("relax %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s", gas.steps(), gas.time(), gas.next_dt(),
+                          100.0 * done, logging::hms(wall * (1.0 - done) / done).c_str()));
   };
 }
 
@@ -119,7 +119,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   c.relax_damping = d.real("settle.relax_damping");
   if (ctx.restarting) {
     // The checkpoint holds the relaxed (and evolved) particles; only the lattice is needed to size the system.
-    log::info("sph_dustsettle: restarting, the gas-only relaxation is skipped");
+    logging::info("sph_dustsettle: restarting, the gas-only relaxation is skipped");
     c.relax_time = 0.0;
   }
   sph::RelaxedColumn col;
@@ -129,7 +129,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   }
   auto sys = col.make_system();
   sys->set_dust(ds);
-  log::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
+  logging::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
             ", mid-plane t_s Omega0 of the largest grain = ",
             sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());
   return std::make_unique<SettleSimulation>(std::move(sys), ctx.units);

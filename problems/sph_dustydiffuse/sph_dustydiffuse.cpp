@@ -59,7 +59,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   dd.eps0 = d.real("dustydiffuse.eps0");
   dd.r_c = d.real("dustydiffuse.r_c");
   const auto pr = sph::dustydiffuse(dd, cfg, ds);
-  log::info("sph_dustydiffuse: ", pr.particles.size(), " particles, ", ds.nspecies, " dust species");
+  logging::info("sph_dustydiffuse: ", pr.particles.size(), " particles, ", ds.nspecies, " dust species");
   return std::make_unique<DiffuseSimulation>(pr.make_system(), ctx.units);
 }
 

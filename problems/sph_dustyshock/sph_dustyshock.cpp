@@ -44,7 +44,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   sh.rhog_right = d.real("dustyshock.rhog_right");
   sh.P_right = d.real("dustyshock.P_right");
   const auto pr = sph::dustyshock(sh, cfg, ds);
-  log::info("sph_dustyshock: ", pr.particles.size(), " particles, ", ds.nspecies, " dust species");
+  logging::info("sph_dustyshock: ", pr.particles.size(), " particles, ", ds.nspecies, " dust species");
   return std::make_unique<sph::SphSimulation>(pr.make_system(), ctx.units);
 }
 

@@ -36,7 +36,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   sph::DustyWave w;
   w.n = static_cast<int>(d.integer("dustywave.n"));
   w.amplitude = d.real("dustywave.amplitude");
-  log::info("sph_dustywave: ", w.n, " particles, ", ds.nspecies, " dust species");
+  logging::info("sph_dustywave: ", w.n, " particles, ", ds.nspecies, " dust species");
   return std::make_unique<sph::SphSimulation>(sph::dustywave(w, cfg, ds).make_system(), ctx.units);
 }
 

@@ -39,7 +39,7 @@ class SodSimulation final : public sph::SphSimulation {
       l1 += std::fabs(snap.rho(i) - exact.sample(x / time).rho);
       ++n;
     }
-    log::info(log::format("mean |rho - rho_exact| over x in [-0.5, 0.5]: %.4e (%d particles)", l1 / n, n));
+    logging::info(logging::format("mean |rho - rho_exact| over x in [-0.5, 0.5]: %.4e (%d particles)", l1 / n, n));
   }
 
  private:
@@ -103,7 +103,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   s.v.assign(s.x.size(), 0.0);
   auto sys = std::make_unique<sph::SphSystem>(cfg, box);
   sys->set_particles(s);
-  log::info("sph_sod: ", s.size(), " particles in ", dim, "D");
+  logging::info("sph_sod: ", s.size(), " particles in ", dim, "D");
   return std::make_unique<SodSimulation>(std::move(sys), ctx.units, l, r);
 }
 

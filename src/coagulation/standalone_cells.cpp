@@ -13,7 +13,7 @@ StandaloneCells::StandaloneCells(const MassGrid& grid, const CoagulationSettings
                                  const std::vector<double>& initial, double call_interval, io::FieldUnit density_unit)
     : grid_(grid), solver_(grid_, settings, cells), kernel_(std::move(kernel)), cells_(cells),
       call_interval_(call_interval), density_unit_(std::move(density_unit)) {
-  if (const auto w = grid_.resolution_warning(); !w.empty()) log::warn(w);
+  if (const auto w = grid_.resolution_warning(); !w.empty()) logging::warn(w);
   const int n = grid_.size();
   if (static_cast<int>(initial.size()) != n) throw std::logic_error("StandaloneCells: initial distribution size differs from the grid");
   density_ = RealView2("coagulation::density", cells_, n);
@@ -31,7 +31,7 @@ void StandaloneCells::advance(double, double dt) {
   substeps_ += st.substeps;
   rejections_ += st.rejections;
   if (st.failed_cells > 0)
-    throw std::runtime_error(log::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
+    throw std::runtime_error(logging::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
   elapsed_ += dt;
 }
 
@@ -79,7 +79,7 @@ std::optional<io::NonFinite> StandaloneCells::find_non_finite() const {
   const auto rho = host_density();
   for (size_t i = 0; i < rho.size(); ++i)
     if (!std::isfinite(rho[i]))
-      return io::NonFinite{"density", log::cat("cell ", i / grid_.size(), ", species ", i % grid_.size())};
+      return io::NonFinite{"density", logging::cat("cell ", i / grid_.size(), ", species ", i % grid_.size())};
   return std::nullopt;
 }
 
@@ -101,7 +101,7 @@ double StandaloneCells::total_density() const {
 }
 
 std::string StandaloneCells::summary() const {
-  return log::format("mass error = %.3e, substeps = %lld, rejections = %lld", (total_density() - total0_) / total0_,
+  return logging::format("mass error = %.3e, substeps = %lld, rejections = %lld", (total_density() - total0_) / total0_,
                      substeps_, rejections_);
 }
 

@@ -27,8 +27,8 @@ std::string value_to_toml(const Value& value) {
     std::string operator()(long long i) const { return std::to_string(i); }
     std::string operator()(double d) const {
       // Shortest of %.15g/%.17g that reads back exactly; always with a decimal point or exponent.
-      std::string text = log::format("%.15g", d);
-      if (std::strtod(text.c_str(), nullptr) != d) text = log::format("%.17g", d);
+      std::string text = logging::format("%.15g", d);
+      if (std::strtod(text.c_str(), nullptr) != d) text = logging::format("%.17g", d);
       if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
       return text;
     }
@@ -71,8 +71,8 @@ KeySpec& KeySpec::one_of(std::vector<std::string> choices) { choices_ = std::mov
 
 std::string KeySpec::range_text() const {
   std::vector<std::string> parts;
-  if (lower_) parts.push_back(log::cat(lower_strict_ ? "> " : ">= ", log::format("%g", *lower_)));
-  if (upper_) parts.push_back(log::cat(upper_strict_ ? "< " : "<= ", log::format("%g", *upper_)));
+  if (lower_) parts.push_back(logging::cat(lower_strict_ ? "> " : ">= ", logging::format("%g", *lower_)));
+  if (upper_) parts.push_back(logging::cat(upper_strict_ ? "< " : "<= ", logging::format("%g", *upper_)));
   if (!choices_.empty()) {
     std::string c = "one of";
     for (size_t i = 0; i < choices_.size(); ++i) c += (i ? ", \"" : " \"") + choices_[i] + "\"";

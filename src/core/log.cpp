@@ -9,7 +9,7 @@
 
 #include "mote/core/comm.hpp"
 
-namespace mote::log {
+namespace mote::logging {
 
 namespace {
 std::string rank_prefix() {
@@ -45,4 +45,4 @@ std::string hms(double seconds) {
   return format("%02lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
 }
 
-}  // namespace mote::log
+}  // namespace mote::logging

@@ -23,12 +23,12 @@ double Timers::total(const std::string& name) const {
 std::string Timers::summary(double wall_seconds) const {
   std::vector<std::pair<std::string, Entry>> rows(entries_.begin(), entries_.end());
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second.seconds > b.second.seconds; });
-  std::string out = log::format("%-32s %10s %12s %7s\n", "timer", "calls", "seconds", "%");
+  std::string out = logging::format("%-32s %10s %12s %7s\n", "timer", "calls", "seconds", "%");
   for (const auto& [name, e] : rows) {
     const double pct = wall_seconds > 0 ? 100.0 * e.seconds / wall_seconds : 0.0;
-    out += log::format("%-32s %10lld %12.4f %7.2f\n", name.c_str(), e.calls, e.seconds, pct);
+    out += logging::format("%-32s %10lld %12.4f %7.2f\n", name.c_str(), e.calls, e.seconds, pct);
   }
-  out += log::format("%-32s %10s %12.4f %7.2f", "wall", "", wall_seconds, 100.0);
+  out += logging::format("%-32s %10s %12.4f %7.2f", "wall", "", wall_seconds, 100.0);
   return out;
 }
 

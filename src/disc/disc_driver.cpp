@@ -19,7 +19,7 @@ void DriverSettings::declare(core::DeckSchema& s) {
       .doc(
           "Evolve the gas surface density (eq. 26, sub-cycled) and rebuild the gas structure (eq. 27-37) on the gas "
           "cadence; false: the initial gas is kept.");
-  s.integer("driver.gas_every").default_value(1).min(1).doc("Gas update after every N-th dust step (RBO24 default 1).");
+  s.integer("driver.gas_every").default_value(1LL).min(1).doc("Gas update after every N-th dust step (RBO24 default 1).");
   s.real("driver.gas_interval")
       .default_value(0.0)
       .min(0.0)
@@ -43,11 +43,11 @@ DiscDriver::DiscDriver(DustDynamics& dust, GasDisc& gas, DriverSettings settings
 
 void DiscDriver::add(SubSolver solver) {
   if (solver.schedule.kind == Schedule::Kind::EveryNSteps && solver.schedule.steps < 1)
-    throw core::DeckError(log::cat("sub-solver ", solver.name, ": every_n_steps needs N >= 1"));
+    throw core::DeckError(logging::cat("sub-solver ", solver.name, ": every_n_steps needs N >= 1"));
   if (solver.schedule.kind == Schedule::Kind::Interval && !(solver.schedule.interval > 0))
-    throw core::DeckError(log::cat("sub-solver ", solver.name, ": the interval must be > 0"));
+    throw core::DeckError(logging::cat("sub-solver ", solver.name, ": the interval must be > 0"));
   if (solver.schedule.kind == Schedule::Kind::Adaptive && !solver.next_interval)
-    throw core::DeckError(log::cat("sub-solver ", solver.name, ": an adaptive schedule needs next_interval"));
+    throw core::DeckError(logging::cat("sub-solver ", solver.name, ": an adaptive schedule needs next_interval"));
   solvers_.push_back(std::move(solver));
   clocks_.push_back({});
 }
@@ -111,7 +111,7 @@ void DiscDriver::save_state(io::H5File& file, const std::string& group) const {
 void DiscDriver::load_state(const io::H5File& file, const std::string& group) {
   const auto n = file.read_attribute_int(group, "sub_solvers");
   if (n != static_cast<std::int64_t>(solvers_.size()))
-    throw core::DeckError(log::cat("checkpoint has ", n, " driver sub-solvers, this run registers ", solvers_.size()));
+    throw core::DeckError(logging::cat("checkpoint has ", n, " driver sub-solvers, this run registers ", solvers_.size()));
   for (size_t k = 0; k < solvers_.size(); ++k) {
     const std::string p = solvers_[k].name + "_";
     clocks_[k].last_time = file.read_attribute_real(group, p + "last_time");

@@ -36,7 +36,7 @@ DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_
   return [eps = std::move(dust_to_gas), floor](const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W) {
     const int ns = static_cast<int>(W.extent(2));
     if (static_cast<int>(eps.size()) != ns)
-      throw core::DeckError(log::cat("well-mixed dust: ", eps.size(), " dust-to-gas ratios for ", ns, " species"));
+      throw core::DeckError(logging::cat("well-mixed dust: ", eps.size(), " dust-to-gas ratios for ", ns, " species"));
     RealView1 ratio("disc::dust_to_gas", ns);
     auto ratio_h = Kokkos::create_mirror_view(ratio);
     for (int s = 0; s < ns; ++s) ratio_h(s) = eps[s];
@@ -162,7 +162,7 @@ std::optional<io::NonFinite> DiscSimulation::find_non_finite() const {
       Kokkos::Min<int>(first));
   if (first != INT_MAX) {
     const int i = first / nt, j = first % nt;
-    return io::NonFinite{"dust Q", log::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
+    return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
                                                grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
   }
   return gas_->find_non_finite();

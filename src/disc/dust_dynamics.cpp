@@ -22,6 +22,21 @@ void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, 
   par_for(name, i0, i1, j0, j1, 0, ns, f);
 }
 
+/// Per-cell reconstruction geometry along one direction from cell centres xc and
+/// edges xe: inv_dp, inv_dm, c_F, c_B (RBO24 sec. 3.1, eq. 9-10). A free function:
+/// nvcc does not allow extended lambdas in constructors.
+RealView2 slope_geometry(const std::string& name, const RealView1& xc, const RealView1& xe) {
+  const int n = static_cast<int>(xc.extent(0));
+  RealView2 g(name, n, 4);
+  par_for(name, 1, n - 1, KOKKOS_LAMBDA(int i) {
+    g(i, 0) = 1.0 / (xc(i + 1) - xc(i));
+    g(i, 1) = 1.0 / (xc(i) - xc(i - 1));
+    g(i, 2) = (xc(i + 1) - xc(i)) / (xe(i + 1) - xc(i));
+    g(i, 3) = (xc(i) - xc(i - 1)) / (xc(i) - xe(i));
+  });
+  return g;
+}
+
 }  // namespace
 
 void DustSettings::declare(core::DeckSchema& s) {
@@ -47,7 +62,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSyste
   st.schmidt = d.real_array("dust.schmidt");
   if (st.schmidt.empty()) st.schmidt.assign(st.sizes.size(), 1.0);
   if (st.schmidt.size() != st.sizes.size())
-    throw core::DeckError(log::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
+    throw core::DeckError(logging::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
   st.rho_grain = d.real("dust.rho_grain") / u.density();
   st.floor = d.real("dust.floor");
   st.cfl_advection = d.real("dust.cfl_advection");
@@ -74,24 +89,8 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
   gas_D_ = RealView2("dust::gas_D", NI, NJ);
   inv_rho_g_ = RealView2("dust::inv_rho_g", NI, NJ);
   Kokkos::deep_copy(inv_rho_g_, 1.0);
-  slope_R_ = RealView2("dust::slope_R", NI, 4);
-  slope_Z_ = RealView2("dust::slope_Z", NJ, 4);
-  {
-    auto sR = slope_R_, sZ = slope_Z_;
-    auto Rc = grid.Rc, Re = grid.Re, tc = grid.tan_tc, te = grid.tan_te;
-    par_for("disc::dust_slope_geometry_R", 1, NI - 1, KOKKOS_LAMBDA(int i) {
-      sR(i, 0) = 1.0 / (Rc(i + 1) - Rc(i));
-      sR(i, 1) = 1.0 / (Rc(i) - Rc(i - 1));
-      sR(i, 2) = (Rc(i + 1) - Rc(i)) / (Re(i + 1) - Rc(i));
-      sR(i, 3) = (Rc(i) - Rc(i - 1)) / (Rc(i) - Re(i));
-    });
-    par_for("disc::dust_slope_geometry_Z", 1, NJ - 1, KOKKOS_LAMBDA(int j) {
-      sZ(j, 0) = 1.0 / (tc(j + 1) - tc(j));
-      sZ(j, 1) = 1.0 / (tc(j) - tc(j - 1));
-      sZ(j, 2) = (tc(j + 1) - tc(j)) / (te(j + 1) - tc(j));
-      sZ(j, 3) = (tc(j) - tc(j - 1)) / (tc(j) - te(j));
-    });
-  }
+  slope_R_ = slope_geometry("disc::dust_slope_geometry_R", grid.Rc, grid.Re);
+  slope_Z_ = slope_geometry("disc::dust_slope_geometry_Z", grid.tan_tc, grid.tan_te);
   schmidt_ = RealView1("dust::schmidt", ns_);
   sizes_ = RealView1("dust::sizes", ns_);
   auto sc_h = Kokkos::create_mirror_view(schmidt_);

@@ -77,7 +77,7 @@ std::optional<io::NonFinite> GasDisc::find_non_finite() const {
       Kokkos::Min<int>(first));
   if (first != INT_MAX)
     return io::NonFinite{"gas_Sigma",
-                         log::format("radial cell %d, R = %g", first + grid_.i_offset, grid_.Rc_h(first + ib))};
+                         logging::format("radial cell %d, R = %g", first + grid_.i_offset, grid_.Rc_h(first + ib))};
   const RealView2 fields[] = {gas_.rho, gas_.vR, gas_.vphi};
   const char* names[] = {"gas_rho", "gas_vR", "gas_vphi"};
   for (int k = 0; k < 3; ++k) {
@@ -91,7 +91,7 @@ std::optional<io::NonFinite> GasDisc::find_non_finite() const {
         Kokkos::Min<int>(first));
     if (first != INT_MAX) {
       const int i = first / nt, j = first % nt;
-      return io::NonFinite{names[k], log::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset, j,
+      return io::NonFinite{names[k], logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset, j,
                                                  grid_.Rc_h(i + ib), grid_.tc_h(j + jb))};
     }
   }

@@ -49,8 +49,8 @@ void HistoryFile::record(long long step, double time, double dt, const std::vect
     out_ << "\n";
     header_written_ = true;
   }
-  out_ << step << log::format(" %.17g %.17g", time, dt);
-  for (const auto& d : diagnostics) out_ << log::format(" %.17g", d.value);
+  out_ << step << logging::format(" %.17g %.17g", time, dt);
+  for (const auto& d : diagnostics) out_ << logging::format(" %.17g", d.value);
   out_ << "\n";
   out_.flush();
 }

@@ -38,7 +38,7 @@ void commit_file(const std::string& final_path, const core::Comm& comm) {
 }
 
 std::string numbered_path(const std::string& dir, const std::string& stem, long long index, const std::string& ext) {
-  return (fs::path(dir) / log::format("%s_%05lld.%s", stem.c_str(), index, ext.c_str())).string();
+  return (fs::path(dir) / logging::format("%s_%05lld.%s", stem.c_str(), index, ext.c_str())).string();
 }
 
 long long index_of(const std::string& path) {

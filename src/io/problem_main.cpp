@@ -82,11 +82,11 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
   try {
     cl = parse_command_line(argc, argv);
     if (cl.help) {
-      log::info(usage(problem), schema.help_text());
+      logging::info(usage(problem), schema.help_text());
       return kExitFinished;
     }
     if (cl.reference) {
-      log::info("## Problem `", problem.name, "`\n\n", problem.summary, "\n\n", schema.markdown());
+      logging::info("## Problem `", problem.name, "`\n\n", problem.summary, "\n\n", schema.markdown());
       return kExitFinished;
     }
     if (cl.deck_path) {
@@ -115,8 +115,8 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     return kExitBadInput;
   }
 
-  log::info("mote ", MOTE_VERSION_STRING, " : problem ", problem.name, " : ", runtime.describe());
-  log::info(deck->to_toml());
+  logging::info("mote ", MOTE_VERSION_STRING, " : problem ", problem.name, " : ", runtime.describe());
+  logging::info(deck->to_toml());
   if (cl.check_only) return kExitFinished;
 
   try {
@@ -134,7 +134,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     RunLoop loop(settings, problem.name, *deck, units, comm, timers);
     return loop.run(*sim, restart);
   } catch (const std::exception& e) {
-    log::error(e.what());
+    logging::error(e.what());
     return kExitError;
   }
 }

@@ -126,7 +126,7 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
     }
     commit_file(xmf, comm_);
   }
-  log::info("  snapshot ", path, " (t = ", log::format("%.6g", s.time), ")");
+  logging::info("  snapshot ", path, " (t = ", logging::format("%.6g", s.time), ")");
   s.snapshot_count += 1;
 }
 
@@ -144,7 +144,7 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
     sim.save_state(file);
   }
   commit_file(path, comm_);
-  log::info("  checkpoint ", path, " (step ", s.step, ")");
+  logging::info("  checkpoint ", path, " (step ", s.step, ")");
   if (comm_.is_root()) {
     const long long stale = s.next_checkpoint - settings_.checkpoints_kept;
     for (long long i = stale; i >= 1; --i) {
@@ -168,14 +168,14 @@ void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);
-  log::info("restarted from ", path, " at step ", s.step, ", t = ", log::format("%.10g", s.time));
+  logging::info("restarted from ", path, " at step ", s.step, ", t = ", logging::format("%.10g", s.time));
 }
 
 bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
   const auto bad = sim.find_non_finite();
   if (bad)
-    log::error("non-finite value in field '", bad->field, "' at ", bad->location, " after step ", s.step,
-               log::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
+    logging::error("non-finite value in field '", bad->field, "' at ", bad->location, " after step ", s.step,
+               logging::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
                " holds the last good state.");
   return comm_.max(bad ? 1 : 0) != 0;
 }
@@ -184,8 +184,8 @@ void RunLoop::progress(const State& s, double wall, long long steps_done) const 
   const double frac = settings_.t_end > 0 ? s.time / settings_.t_end : 1.0;
   const double rate = wall > 0 ? steps_done / wall : 0.0;
   const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
-  log::info(log::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
-                        100.0 * frac, log::hms(eta).c_str(), rate));
+  logging::info(logging::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
+                        100.0 * frac, logging::hms(eta).c_str(), rate));
 }
 
 int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
@@ -208,7 +208,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
-      log::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step, "; writing a checkpoint and stopping");
+      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step, "; writing a checkpoint and stopping");
       write_checkpoint(sim, s);
       return kExitInterrupted;
     }
@@ -218,7 +218,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
       dt = sim.max_dt();
     }
     if (!(dt > 0.0) || !std::isfinite(dt)) {
-      log::error(log::format("invalid time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time));
+      logging::error(logging::format("invalid time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time));
       return kExitNonFinite;
     }
     const double t_next = next_snapshot_time(s);
@@ -262,11 +262,11 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   write_checkpoint(sim, s);
   progress(s, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
-  log::info(finished ? "finished" : "stopped at run.max_steps", log::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)",
+  logging::info(finished ? "finished" : "stopped at run.max_steps", logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)",
                                                                            s.step - start_step, s.time, wall,
                                                                            (s.step - start_step) / std::max(wall, 1e-30)));
   if (finished) sim.finish(s.time);
-  log::info("timers:\n", timers_.summary(wall));
+  logging::info("timers:\n", timers_.summary(wall));
   return finished ? kExitFinished : kExitStepLimit;
 }
 

@@ -104,7 +104,7 @@ std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const 
   std::ostringstream os;
   os << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
   os << "  <Grid Name=\"mesh\" GridType=\"Uniform\">\n";
-  os << "   <Time Value=\"" << log::format("%.17g", time) << "\"/>\n";
+  os << "   <Time Value=\"" << logging::format("%.17g", time) << "\"/>\n";
   const std::string float_item = "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">";
   const std::string int_item = "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
   const std::string item = float_item + h5_name;

@@ -86,9 +86,9 @@ GridSpec GridSpec::from_deck(const core::Deck& d) {
   if (ts == "edges") g.theta_edges = d.real_array("grid.theta_edges");
   auto check_edges = [](const std::vector<double>& e, int n, const char* key) {
     if (static_cast<int>(e.size()) != n + 1)
-      throw core::DeckError(log::cat(key, ": expected ", n + 1, " edges, got ", e.size()));
+      throw core::DeckError(logging::cat(key, ": expected ", n + 1, " edges, got ", e.size()));
     for (size_t k = 1; k < e.size(); ++k)
-      if (!(e[k] > e[k - 1])) throw core::DeckError(log::cat(key, ": edges must increase strictly"));
+      if (!(e[k] > e[k - 1])) throw core::DeckError(logging::cat(key, ": edges must increase strictly"));
   };
   check_edges(g.r_edges, g.nr, "grid.r_edges");
   check_edges(g.theta_edges, g.ntheta, "grid.theta_edges");
@@ -124,6 +124,36 @@ RealView1 to_device(const std::string& name, const std::vector<double>& v) {
   return d;
 }
 
+/// Cell volumes V, face areas AR and AZ and centre heights Zc of `g` from its
+/// 1D edges (RBO24 app. A). A free function: nvcc does not allow extended
+/// lambdas in constructors.
+void fill_cell_geometry(Grid& g) {
+  const int NI = g.nr_total(), NJ = g.nt_total();
+  g.V = RealView2("grid::V", NI, NJ);
+  g.AR = RealView2("grid::AR", NI + 1, NJ);
+  g.AZ = RealView2("grid::AZ", NI, NJ + 1);
+  g.Zc = RealView2("grid::Zc", NI, NJ);
+  auto V_ = g.V, AR_ = g.AR, AZ_ = g.AZ, Zc_ = g.Zc;
+  auto Re_ = g.Re, Rc_ = g.Rc, tte = g.tan_te, ttc = g.tan_tc, cte = g.cos_te;
+  const bool planar = g.geometry == Geometry::Planar;
+  par_for("mesh::grid_geometry", 0, NI + 1, 0, NJ + 1, KOKKOS_LAMBDA(int i, int j) {
+    const Real r0 = Re_(i);
+    if (i < NI && j < NJ) {
+      const Real r1 = Re_(i + 1), dtan = tte(j + 1) - tte(j);
+      V_(i, j) = planar ? 0.5 * (r1 * r1 - r0 * r0) * dtan : (r1 * r1 * r1 - r0 * r0 * r0) * dtan / 3.0;
+      Zc_(i, j) = Rc_(i) * ttc(j);
+    }
+    if (j < NJ) {
+      const Real dtan = tte(j + 1) - tte(j);
+      AR_(i, j) = planar ? r0 * dtan : r0 * r0 * dtan;
+    }
+    if (i < NI) {
+      const Real r1 = Re_(i + 1);
+      AZ_(i, j) = planar ? (r1 - r0) / cte(j) : 0.5 * (r1 * r1 - r0 * r0) / cte(j);
+    }
+  });
+}
+
 }  // namespace
 
 Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(comm.rank()), size_(comm.size()) {
@@ -135,7 +165,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   nr = base + (rank_ < extra ? 1 : 0);
   i_offset = rank_ * base + std::min(rank_, extra);
   if (nr < ng)
-    throw core::DeckError(log::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ", size_,
+    throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ", size_,
                                    " ranks; increase grid.nr or use fewer ranks"));
   r_edges_global = spec.r_edges;
   theta_edges_global = spec.theta_edges;
@@ -173,30 +203,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   sin_te = to_device("grid::sin_te", sin_tev);
   cos_te = to_device("grid::cos_te", cos_tev);
 
-  const int NI = nr + 2 * ng, NJ = nt + 2 * ng;
-  V = RealView2("grid::V", NI, NJ);
-  AR = RealView2("grid::AR", NI + 1, NJ);
-  AZ = RealView2("grid::AZ", NI, NJ + 1);
-  Zc = RealView2("grid::Zc", NI, NJ);
-  auto V_ = V, AR_ = AR, AZ_ = AZ, Zc_ = Zc;
-  auto Re_ = Re, Rc_ = Rc, tte = tan_te, ttc = tan_tc, cte = cos_te;
-  const bool planar = geometry == Geometry::Planar;
-  par_for("mesh::grid_geometry", 0, NI + 1, 0, NJ + 1, KOKKOS_LAMBDA(int i, int j) {
-    const Real r0 = Re_(i);
-    if (i < NI && j < NJ) {
-      const Real r1 = Re_(i + 1), dtan = tte(j + 1) - tte(j);
-      V_(i, j) = planar ? 0.5 * (r1 * r1 - r0 * r0) * dtan : (r1 * r1 * r1 - r0 * r0 * r0) * dtan / 3.0;
-      Zc_(i, j) = Rc_(i) * ttc(j);
-    }
-    if (j < NJ) {
-      const Real dtan = tte(j + 1) - tte(j);
-      AR_(i, j) = planar ? r0 * dtan : r0 * r0 * dtan;
-    }
-    if (i < NI) {
-      const Real r1 = Re_(i + 1);
-      AZ_(i, j) = planar ? (r1 - r0) / cte(j) : 0.5 * (r1 * r1 - r0 * r0) / cte(j);
-    }
-  });
+  fill_cell_geometry(*this);
   Re_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Re);
   Rc_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Rc);
   te_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), te);

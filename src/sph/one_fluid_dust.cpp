@@ -204,7 +204,7 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
       bad);
   tva_violations_ = bad;
   if (bad > 0 && !warned_) {
-    log::warn("sph dust: eps T_s exceeds the Courant time-step on ", bad,
+    logging::warn("sph dust: eps T_s exceeds the Courant time-step on ", bad,
               " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)");
     warned_ = true;
   }

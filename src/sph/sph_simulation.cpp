@@ -195,7 +195,8 @@ void SphSimulation::load_state(const io::H5File& f) {
     dust->restore_mass_accounts(acc);
   }
   std::vector<std::int32_t> ibuf(n);
-  for (const auto& [name, view] : {std::pair<const char*, IntView1>{"/state/type", p.type}, {"/state/id", p.id}}) {
+  const std::pair<const char*, IntView1> int_fields[] = {{"/state/type", p.type}, {"/state/id", p.id}};
+  for (const auto& [name, view] : int_fields) {
     f.read(name, scalar, ibuf.data());
     auto h = Kokkos::create_mirror_view(view);
     for (hsize_t i = 0; i < n; ++i) h(i) = ibuf[i];
@@ -239,7 +240,7 @@ std::optional<io::NonFinite> SphSimulation::find_non_finite() const {
       },
       Kokkos::Min<int>(first));
   if (first == std::numeric_limits<int>::max()) return std::nullopt;
-  return io::NonFinite{"particle state (x, v, u, h)", log::cat("particle index ", first)};
+  return io::NonFinite{"particle state (x, v, u, h)", logging::cat("particle index ", first)};
 }
 
 }  // namespace mote::sph

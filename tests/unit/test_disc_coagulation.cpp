@@ -81,7 +81,7 @@ struct Fixture {
     }
   }
   /// Host copy of the dust state (a copy also where Q is in host memory).
-  Kokkos::View<Real****, Kokkos::HostSpace> Q() const {
+  auto Q() const {
     auto h = Kokkos::create_mirror(Kokkos::HostSpace(), sim.dust().Q);
     Kokkos::deep_copy(h, sim.dust().Q);
     return h;

@@ -11,6 +11,15 @@
 
 using mote::Real;
 
+namespace {
+/// x_i = 1 + 0.5 sin(0.1 i). A free function: nvcc does not allow extended
+/// lambdas in a GoogleTest body (a private member function).
+void fill_smooth(const mote::RealView1& x) {
+  mote::par_for("test::fill_x", 0, static_cast<int>(x.extent(0)),
+                KOKKOS_LAMBDA(int i) { x(i) = 1.0 + 0.5 * mote::math::sin(0.1 * i); });
+}
+}  // namespace
+
 TEST(KokkosKernelsLink, CrsSpmvMatchesDenseProduct) {
   using Matrix = KokkosSparse::CrsMatrix<Real, int, mote::ExecSpace::device_type, void, int>;
   const int n = 200;
@@ -44,7 +53,7 @@ TEST(KokkosKernelsLink, CrsSpmvMatchesDenseProduct) {
   Matrix A("A", n, n, nnz, values, row_map, entries);
 
   mote::RealView1 x("x", n), y("y", n);
-  mote::par_for("test::fill_x", 0, n, KOKKOS_LAMBDA(int i) { x(i) = 1.0 + 0.5 * mote::math::sin(0.1 * i); });
+  fill_smooth(x);
   KokkosSparse::spmv("N", 1.0, A, x, 0.0, y);
 
   auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);

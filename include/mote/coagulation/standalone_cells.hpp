@@ -28,6 +28,8 @@ class StandaloneCells : public io::Simulation {
   void load_state(const io::H5File& file) override;
   std::vector<io::Diagnostic> diagnostics() const override;
   std::optional<io::NonFinite> find_non_finite() const override;
+  /// Total density of one cell (all cells are identical in these problems: the mean).
+  double total_density() const;
 
  protected:
   /// Writes the mass grid (/data/mass, /data/mass_edges, /data/grain_size) and
@@ -35,8 +37,6 @@ class StandaloneCells : public io::Simulation {
   void write_distribution(io::SnapshotWriter& out, const io::FieldUnit& mass_unit, const io::FieldUnit& size_unit) const;
   /// Row-major (cells, species) host copy of the densities.
   std::vector<double> host_density() const;
-  /// Total density of one cell (all cells are identical in these problems: the mean).
-  double total_density() const;
   /// Mass error relative to the initial state and call statistics, for messages.
   std::string summary() const;
 

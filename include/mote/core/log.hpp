@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-namespace mote::log {
+namespace mote::logging {
 
 template <class... Args>
 std::string cat(const Args&... args) {
@@ -32,4 +32,4 @@ std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 /// A duration as hh:mm:ss ("--:--:--" when unknown: negative or not finite).
 std::string hms(double seconds);
 
-}  // namespace mote::log
+}  // namespace mote::logging

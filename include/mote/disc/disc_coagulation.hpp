@@ -55,6 +55,11 @@ class DiscCoagulation {
   /// Cell index of the coagulation solver for active cell (i, j): (i - i_begin) nt + (j - j_begin).
   int cell(int i, int j) const { return (i - grid_.i_begin()) * grid_.nt + (j - grid_.j_begin()); }
 
+  /// next_interval_ from the solver's proposals (global minimum of the positive
+  /// ones). Public only because nvcc's extended lambdas may not live in private
+  /// member functions.
+  void update_next_interval();
+
  private:
   const mesh::Grid& grid_;
   DustDynamics& dust_;
@@ -67,8 +72,6 @@ class DiscCoagulation {
   double next_interval_ = 0.0;
 
   io::Block cell_block() const;
-  /// next_interval_ from the solver's proposals (global minimum of the positive ones).
-  void update_next_interval();
 };
 
 }  // namespace mote::disc

@@ -82,13 +82,16 @@ class DustDynamics {
   /// Stopping times (i, j, s) from the current gas state (Epstein, eq. 14).
   View<Real***> stopping_times() const;
 
- private:
+  // The stages of step(). Public only because nvcc's extended lambdas (the
+  // kernels inside them) may not live in private member functions.
   void fill_ghosts(const View<Real****>& w);
   void compute_fluxes(const View<Real****>& w, bool second_order);
   /// Limited slopes of w along R (radial = true, cells i in [ng-1, ng+nr]) or
   /// tan(theta) (cells j in [ng-1, ng+nt]) into slope_, once per cell.
   void compute_slopes(const View<Real****>& w, bool radial);
   void advance_stage(const View<Real****>& w_source, double dt_stage, const View<Real****>& w_out, bool update_q);
+
+ private:
 
   const mesh::Grid& grid_;
   DustSettings settings_;

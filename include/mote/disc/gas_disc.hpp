@@ -78,9 +78,11 @@ class GasDisc {
   void write_snapshot(io::SnapshotWriter& out) const;
   std::optional<io::NonFinite> find_non_finite() const;
 
- private:
+  /// Ghost cells of Sigma from the boundary conditions at `time`. Public only
+  /// because nvcc's extended lambdas may not live in private member functions.
   void fill_sigma_ghosts(double time);
 
+ private:
   const mesh::Grid& grid_;
   GasConfig cfg_;
   units::UnitSystem units_;

@@ -21,9 +21,12 @@ class RadialHalo {
   void exchange(const View<Real***>& f);
   void exchange(const View<Real****>& f);
 
- private:
+  /// The one implementation of exchange(). Public only because nvcc's extended
+  /// lambdas may not live in private member functions.
   template <class ViewT>
   void exchange_impl(const ViewT& f);
+
+ private:
   core::Comm comm_;
   int ng_, nr_, left_, right_;
   RealView1 send_, recv_;

@@ -126,11 +126,13 @@ class OneFluidDust {
   /// Packed per-particle data gathered by the dusty force loops.
   Kokkos::View<Real**, Kokkos::LayoutRight, MemSpace> pack;
 
+  /// sum_a m_a eps_aj for each species j (host). Public only because nvcc's
+  /// extended lambdas may not live in private member functions.
+  std::vector<Real> species_mass(const Particles& p) const;
+
  private:
   DustSettings s_;
   RealView1 kdrag_, size_, tstop_;  ///< per species
-  /// sum_a m_a eps_aj for each species j (host).
-  std::vector<Real> species_mass(const Particles& p) const;
   bool projecting() const;
 
   Real floored_mass_ = 0.0;
