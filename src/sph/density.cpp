@@ -5,6 +5,32 @@
 
 namespace mote::sph {
 
+/// Per-pass counters of the h-rho solver, reduced in the density kernel itself
+/// (no per-particle scratch): counts and the iteration sum add, the largest
+/// iteration count is kept by the same join.
+struct DensityCounts {
+  int outside_cover = 0, not_converged = 0, max_iterations = 0;
+  long long iterations = 0;
+  KOKKOS_INLINE_FUNCTION DensityCounts& operator+=(const DensityCounts& o) {
+    outside_cover += o.outside_cover;
+    not_converged += o.not_converged;
+    max_iterations = max_iterations > o.max_iterations ? max_iterations : o.max_iterations;
+    iterations += o.iterations;
+    return *this;
+  }
+};
+
+}  // namespace mote::sph
+
+namespace Kokkos {
+template <>
+struct reduction_identity<mote::sph::DensityCounts> {
+  KOKKOS_FORCEINLINE_FUNCTION static mote::sph::DensityCounts sum() { return {}; }
+};
+}  // namespace Kokkos
+
+namespace mote::sph {
+
 // A named namespace: nvcc requires the functions that enclose extended
 // (KOKKOS_LAMBDA) lambdas to have external linkage.
 namespace detail {
@@ -30,10 +56,9 @@ DensityResult density_impl(Particles& p, const NeighbourList& nl, const Box& box
   K::shape(0.0, f0, df0);
   const Real w0 = K::norm() * f0;
 
-  IntView1 status("sph::density_status", n);
-  IntView1 iters("sph::density_iters", n);
-  par_for(
-      "sph::density", 0, n, KOKKOS_LAMBDA(int a) {
+  DensityCounts counts;
+  par_reduce(
+      "sph::density", 0, n, KOKKOS_LAMBDA(int a, DensityCounts& acc) {
         const Real ma = m(a);
         const int ta = type(a);
         Real xa[3] = {0, 0, 0};
@@ -109,22 +134,19 @@ DensityResult density_impl(Particles& p, const NeighbourList& nl, const Box& box
           rho(a) = rho_a;
           omega(a) = omega_a;
         }
-        status(a) = st;
-        iters(a) = it > max_iter ? max_iter : it;
-      });
+        const int used = it > max_iter ? max_iter : it;
+        acc.outside_cover += st == 1 ? 1 : 0;
+        acc.not_converged += st == 2 ? 1 : 0;
+        acc.max_iterations = acc.max_iterations > used ? acc.max_iterations : used;
+        acc.iterations += used;
+      },
+      counts);
 
   DensityResult res;
-  par_reduce(
-      "sph::density_cover", 0, n, KOKKOS_LAMBDA(int a, int& c) { c += status(a) == 1 ? 1 : 0; }, res.outside_cover);
-  par_reduce(
-      "sph::density_failed", 0, n, KOKKOS_LAMBDA(int a, int& c) { c += status(a) == 2 ? 1 : 0; }, res.not_converged);
-  par_reduce(
-      "sph::density_iters", 0, n, KOKKOS_LAMBDA(int a, int& c) { c = iters(a) > c ? iters(a) : c; },
-      Kokkos::Max<int>(res.max_iterations));
-  long long total = 0;
-  par_reduce(
-      "sph::density_iters_sum", 0, n, KOKKOS_LAMBDA(int a, long long& c) { c += iters(a); }, total);
-  res.mean_iterations = n > 0 ? static_cast<double>(total) / n : 0.0;
+  res.outside_cover = counts.outside_cover;
+  res.not_converged = counts.not_converged;
+  res.max_iterations = counts.max_iterations;
+  res.mean_iterations = n > 0 ? static_cast<double>(counts.iterations) / n : 0.0;
   return res;
 }
 
