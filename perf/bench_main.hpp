@@ -10,6 +10,8 @@
 int main(int argc, char** argv) {
   mote::core::Runtime runtime(argc, argv);
   benchmark::AddCustomContext("mote_backend", runtime.describe());
+  benchmark::AddCustomContext("mote_execution_space", mote::core::Runtime::backend());
+  benchmark::AddCustomContext("mote_device", mote::core::Runtime::device_name());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -2,6 +2,10 @@
 #include "mote/core/runtime.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <fstream>
+#if defined(KOKKOS_ENABLE_CUDA)
+#include <cuda_runtime.h>
+#endif
 
 #include "mote/core/log.hpp"
 
@@ -25,9 +29,36 @@ Runtime::~Runtime() {
 
 std::string Runtime::describe() const {
   const int v = KOKKOS_VERSION;
-  return log::cat("Kokkos ", v / 10000, ".", (v / 100) % 100, ".", v % 100, ", execution space ",
+  return logging::cat("Kokkos ", v / 10000, ".", (v / 100) % 100, ".", v % 100, ", execution space ",
                   Kokkos::DefaultExecutionSpace::name(), ", concurrency ", Kokkos::DefaultExecutionSpace().concurrency(),
                   ", MPI ranks ", comm_.size());
+}
+
+std::string Runtime::backend() { return Kokkos::DefaultExecutionSpace::name(); }
+
+namespace {
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown CPU";
+}
+}  // namespace
+
+std::string Runtime::device_name() {
+#if defined(KOKKOS_ENABLE_CUDA)
+  if (std::string(Kokkos::DefaultExecutionSpace::name()) == "Cuda") {
+    int device = 0;
+    cudaDeviceProp prop{};
+    if (cudaGetDevice(&device) == cudaSuccess && cudaGetDeviceProperties(&prop, device) == cudaSuccess)
+      return prop.name;
+    return "unknown CUDA device";
+  }
+#endif
+  return cpu_model();
 }
 
 }  // namespace mote::core

@@ -19,6 +19,11 @@ class Runtime {
   const Comm& comm() const { return comm_; }
   /// One line describing the backend: Kokkos version, execution space, threads, MPI ranks.
   std::string describe() const;
+  /// The execution space's name ("Serial", "OpenMP", "Cuda").
+  static std::string backend();
+  /// The hardware the execution space runs on: the GPU's name for CUDA, the
+  /// CPU model (from /proc/cpuinfo) for host back-ends.
+  static std::string device_name();
 
  private:
   Comm comm_;
