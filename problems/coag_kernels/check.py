@@ -7,7 +7,8 @@ The analytic bin masses are computed here with scipy, independently of the C++
 code, from the deck stored in the snapshot (kernel, K0, N0, m0) and the bin
 edges: constant f = g^2 e^(-g x), additive (Golovin), product (before gelation).
 Prints the relative L1 error of the bin masses, sum|rho - ref| / sum ref, and the
-relative change of the total mass; exits non-zero if either exceeds its limit.
+relative change of the total mass; each is a PASS or FAIL line against its
+limit. Ends with 'N passed, M failed'; exits non-zero if either exceeds its limit.
 """
 import argparse
 import os
@@ -19,6 +20,7 @@ from scipy.special import i1e
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.verdict import Verdict  # noqa: E402
 
 
 def mass_density(kernel, x, T):
@@ -80,14 +82,10 @@ def main():
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)
         print(f"wrote {args.plot}")
-    fails = 0
-    if not l1 <= args.max_error:
-        print(f"FAIL: L1_rel {l1:.3e} > {args.max_error:.3e}")
-        fails += 1
-    if not merr <= args.mass_tol:
-        print(f"FAIL: mass error {merr:.3e} > {args.mass_tol:.3e}")
-        fails += 1
-    return 1 if fails else 0
+    v = Verdict()
+    v.check(l1 <= args.max_error, f"L1_rel of the bin masses {l1:.3e} <= {args.max_error:g} ({kernel} kernel, T = {T:g})")
+    v.check(merr <= args.mass_tol, f"total mass conserved: {merr:.3e} <= {args.mass_tol:g}")
+    return v.finish()
 
 
 if __name__ == "__main__":

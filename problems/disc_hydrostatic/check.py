@@ -19,7 +19,13 @@ computed here independently of the C++ code:
     rho_mid proportional to R^p, c_s^2 to R^q' (q' = -q), for |Z| < 2H, and its
     mass-weighted mean over the column against -3 nu / (2 R) (steady disc);
   * Sigma steady to 1e-3 over the run (Sigma ~ 1/R, nu ~ R is a steady state of eq. 26).
-Prints the numbers; with --strict exits non-zero if a threshold is missed.
+Every figure with a threshold (THRESHOLDS: VALIDATION C4 and the ceilings of
+tests/regression/disc_hydrostatic_check.py for the default 128 x 160 deck; RANGES:
+the mid-plane outflow v_R / (nu / R) in (1.6, 1.9), Takeuchi & Lin: +1.75) is a
+PASS or FAIL line; the others (cells counted, v_R against the exact disc, whose
+ceiling 0.03 nu / R that script asserts only at 256 x 320) are INFO lines. Ends
+with 'N passed, M failed' and exits non-zero if a threshold is missed
+(--strict, formerly needed for that, is accepted and changes nothing).
 """
 import argparse
 import os
@@ -57,6 +63,10 @@ THRESHOLDS = {
     "vR_tl02_err": 8e-2,
     "vR_mean_rel_err": 3e-2,
     "sigma_steady": 1e-3,
+}
+# Figures that must lie in an open interval (tests/regression/disc_hydrostatic_check.py).
+RANGES = {
+    "vR_mid_over_nu_R": (1.6, 1.9),
 }
 
 
@@ -224,18 +234,28 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
     ap.add_argument("--plot")
-    ap.add_argument("--strict", action="store_true")
+    ap.add_argument("--strict", action="store_true", help="accepted for compatibility; thresholds always apply")
     args = ap.parse_args()
     out, extra = analyse(args.run_dir)
-    failed = 0
+    passed = failed = 0
     for key, value in out.items():
-        limit = THRESHOLDS.get(key)
-        ok = limit is None or value <= limit
+        limit, interval = THRESHOLDS.get(key), RANGES.get(key)
+        if limit is not None:
+            ok = value <= limit
+            text = f"{key:20s} {value:.4e}  (<= {limit:.1e})"
+        elif interval is not None:
+            ok = interval[0] < value < interval[1]
+            text = f"{key:20s} {value:.4e}  (in ({interval[0]:g}, {interval[1]:g}))"
+        else:
+            print(f"INFO {key:20s} {value:.4e}")
+            continue
+        print(("PASS " if ok else "FAIL ") + text)
+        passed += ok
         failed += not ok
-        print(f"{key:20s} {value:.4e}" + ("" if limit is None else f"  (<= {limit:.1e}) {'ok' if ok else 'FAIL'}"))
     if args.plot:
         plot(extra, args.plot)
-    return 1 if (args.strict and failed) else 0
+    print(f"{passed} passed, {failed} failed")
+    return 0 if failed == 0 and passed > 0 else 1
 
 
 if __name__ == "__main__":

@@ -10,7 +10,9 @@ B = eps0 / r_c^2, which does not reproduce eq. 52); eps = 0 where negative.
 Prints L2_abs(eps) = sqrt(mean((eps - eps_exact)^2)) over the particles with
 r < rmax (0.2) in the snapshots at the given times (default: the last) and
 the relative drift of the dust mass sum m eps; fails above --max-error (5e-4,
-VALIDATION A3).
+VALIDATION A3) at any of the times, or if the dust mass drifts by more than
+--mass-tol (1e-12, VALIDATION A7 and tests/regression/sph_dustydiffuse.py).
+Ends with 'N passed, M failed'; exits non-zero unless every check passed.
 """
 import argparse
 import os
@@ -21,6 +23,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.verdict import Verdict  # noqa: E402
 
 
 def exact_eps(r, t, eps0, r_c, eta):
@@ -63,6 +66,7 @@ def main():
     ap.add_argument("--rmax", type=float, default=0.2)
     ap.add_argument("--plot")
     ap.add_argument("--max-error", type=float, default=5e-4)
+    ap.add_argument("--mass-tol", type=float, default=1e-12)
     args = ap.parse_args()
     res, drift = errors(args.run_dir, args.times, args.rmax)
     for t, l2, *_ in res:
@@ -82,10 +86,11 @@ def main():
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)
         print(f"wrote {args.plot}")
-    worst = max(l2 for _, l2, *_ in res)
-    ok = worst <= args.max_error
-    print(("PASS" if ok else "FAIL") + f": {worst:.3e} <= {args.max_error:.1e}")
-    return 0 if ok else 1
+    v = Verdict()
+    for t, l2, *_ in res:
+        v.check(l2 <= args.max_error, f"t = {t:g}: L2_abs(eps, r < {args.rmax:g}) = {l2:.3e} <= {args.max_error:.1e}")
+    v.check(drift <= args.mass_tol, f"dust mass conserved: relative drift {drift:.1e} <= {args.mass_tol:g}")
+    return v.finish()
 
 
 if __name__ == "__main__":

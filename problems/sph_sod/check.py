@@ -6,7 +6,10 @@
 The exact solution of the Riemann problem for an ideal gas (Toro 2009, ch. 4)
 comes from python/mote/shock_tube.py, independent of the C++ solver. Prints the
 mean absolute density error over the particles with x in [-0.5, 0.5] (issue 6
-/ VALIDATION A2 metric) and fails above --max-error (default 1e-2).
+/ VALIDATION A2 metric) and fails above --max-error (default 1e-2); from
+history.txt, x momentum conserved to 1e-12 of the total mass and total energy
+to --energy-tol (default 1e-3, shock capturing), as tests/regression/sph_sod.py
+asserts. Ends with 'N passed, M failed'; exits non-zero unless every check passed.
 """
 import argparse
 import os
@@ -17,6 +20,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.verdict import Verdict  # noqa: E402
 from mote.shock_tube import exact_riemann, plot_tube  # noqa: E402
 
 
@@ -39,20 +43,38 @@ def compare(run_dir):
     return t, x, rho, vx, P, ex, inside, err
 
 
+def conservation(v, run_dir, energy_tol, mass=True):
+    """From history.txt: mass (VALIDATION A7) and x momentum to 1e-12 of the total mass, energy to energy_tol."""
+    path = os.path.join(run_dir, "history.txt")
+    if not os.path.exists(path):
+        v.check(False, f"conservation: no {path}")
+        return
+    h = mote.read_history(path)
+    m0 = h["mass"][0]
+    dm, dp = abs(h["mass"][-1] - m0) / m0, abs(h["momentum_x"][-1] - h["momentum_x"][0]) / m0
+    de = abs(h["energy"][-1] - h["energy"][0]) / abs(h["energy"][0])
+    if mass:
+        v.check(dm <= 1e-12, f"mass conserved: relative drift {dm:.1e} <= 1e-12")
+    v.check(dp <= 1e-12, f"momentum conserved: drift {dp:.1e} <= 1e-12 of the total mass")
+    v.check(de <= energy_tol, f"total energy conserved: relative drift {de:.1e} <= {energy_tol:g}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
     ap.add_argument("--plot")
     ap.add_argument("--max-error", type=float, default=1e-2)
+    ap.add_argument("--energy-tol", type=float, default=1e-3)
     args = ap.parse_args()
     t, x, rho, vx, P, ex, inside, err = compare(args.run_dir)
     print(f"sph_sod: t = {t:g}, {inside.sum()} particles in [-0.5, 0.5], mean |rho - rho_exact| = {err:.4e}")
     if args.plot:
         profiles = [(name, q, e) for q, e, name in zip((rho, vx, P), ex, ("density", "velocity", "pressure"))]
         plot_tube(args.plot, x, profiles, f"Sod shock tube, t = {t:g}, mean density error {err:.2e}")
-    ok = err <= args.max_error
-    print(("PASS" if ok else "FAIL") + f": {err:.3e} <= {args.max_error:.1e}")
-    return 0 if ok else 1
+    v = Verdict()
+    v.check(err <= args.max_error, f"mean |rho - rho_exact| over [-0.5, 0.5] = {err:.3e} <= {args.max_error:.1e}")
+    conservation(v, args.run_dir, args.energy_tol, mass=False)
+    return v.finish()
 
 
 if __name__ == "__main__":
