@@ -81,8 +81,9 @@ TEST(SphConservation, MomentumAndEnergy2D) {
   EXPECT_LT(a.momentum_err, 1e-12);
   EXPECT_LT(b.momentum_err, 1e-12);
   EXPECT_LT(a.energy_drift, 2e-3);
-  // Second-order integrator: halving dt reduces the drift by ~4.
-  EXPECT_GT(a.energy_drift / b.energy_drift, 2.5);
+  // Second-order integrator: halving dt would reduce the drift by 4; measured 3.3
+  // (order 1.7, docs/sph.md), asserted as order >= 1.58.
+  EXPECT_GT(a.energy_drift / b.energy_drift, 3.0);
 }
 
 TEST(SphConservation, MomentumAndEnergy3DCullenDehnen) {

@@ -301,7 +301,8 @@ double column_3d_density_error(int nx) {
 TEST(SphDustSettling, ThreeDimensionalColumnIsHydrostatic) {
   const double e6 = column_3d_density_error(6), e8 = column_3d_density_error(8);
   EXPECT_LT(e8, 0.02);      // measured 1.47e-2 (M4, h = 1.2 dx, h ~ 0.3 H at the mid-plane)
-  EXPECT_GT(e6 / e8, 1.4);  // converges: measured 1.66 (order 1.8 in the spacing)
+  // Converges: measured 1.66, order 1.76 in the spacing (8/6); asserted as order >= 1.5.
+  EXPECT_GT(std::log(e6 / e8) / std::log(8.0 / 6.0), 1.5);
 }
 
 // settle.zmax: HPL18 place their lattice in z in [-0.65, 0.65] = [-2.6H, 2.6H]

@@ -40,7 +40,8 @@ template <class K>
 void check_kernel(const std::string& name) {
   const Real err = std::fabs(normalisation<K>() - 1.0);
   std::printf("[sph kernels] %-12s %dD normalisation error %.3e\n", name.c_str(), K::dim, err);
-  EXPECT_LT(err, 1e-6) << name << " " << K::dim << "D";
+  // Measured <= 5.0e-15 (docs/sph.md): 1e-14 leaves a factor 2 for the quadrature's round-off.
+  EXPECT_LT(err, 1e-14) << name << " " << K::dim << "D";
 
   const Real h = 0.3;
   EXPECT_GT(kernel_w<K>(0.0, h), 0.0);
@@ -62,8 +63,10 @@ void check_kernel(const std::string& name) {
   }
   std::printf("[sph kernels] %-12s %dD max rel. derivative error dW/dr %.2e dW/dh %.2e\n", name.c_str(), K::dim,
               max_err_r / fmax, max_err_h / dhmax);
-  EXPECT_LT(max_err_r / fmax, 1e-6);
-  EXPECT_LT(max_err_h / dhmax, 1e-6);
+  // Central differences with step 1e-6 h: truncation ~1e-12, round-off ~1e-10 relative;
+  // measured <= 2.24e-9 (docs/sph.md), asserted with a factor 2.
+  EXPECT_LT(max_err_r / fmax, 5e-9);
+  EXPECT_LT(max_err_h / dhmax, 5e-9);
 }
 
 TEST(SphKernels, M4Normalisation) {
