@@ -86,10 +86,12 @@ void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& 
   }
 }
 
+void SphSystem::rebuild_neighbours() { nl_.build(p_, box_, cfg_.kernel, cfg_.skin); }
+
 void SphSystem::update_density() {
   density_passes_ = 0.0;
   for (int pass = 0; pass < 20; ++pass) {
-    if (nl_.needs_rebuild(p_, box_)) nl_.build(p_, box_, cfg_.kernel, cfg_.skin);
+    if (nl_.needs_rebuild(p_, box_)) rebuild_neighbours();
     const DensityResult r = compute_density(p_, nl_, box_, cfg_);
     density_passes_ += r.mean_iterations;
     if (r.outside_cover == 0) {

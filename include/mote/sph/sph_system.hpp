@@ -87,6 +87,9 @@ class SphSystem {
   /// accelerations and damping for the velocities vel and energies u.
   void compute_accelerations(const RealView2& vel, const RealView1& u);
 
+  /// Rebuilds the neighbour list now (as a step does when the list expires).
+  void rebuild_neighbours();
+
   Diagnostics diagnostics() const;
   Snapshot snapshot() const;
 
