@@ -5,21 +5,31 @@
 //     h_fact 1.0, ~113 neighbours, to compare with Phantom's settling column),
 //   * the 2D settling column of PL15 sec. 4.4 (32 x 111, M6, isothermal,
 //     disc gravity eq. 53),
-// plus the three phases separately (list build, density, forces).
+//   * the 3D settling column of HPL18 sec. 4.3 as problems/sph_dustsettle's
+//     sph_dustsettle_multigrain_3d.toml sets it up (25 x 30 x 80 = 60,000
+//     particles, M6, h = dx, alpha = 1, beta = 2) with one dust species (1 mm,
+//     S variable), from the lattice: 49 steps after a warm-up step, timed
+//     separately for steps with and without a neighbour rebuild,
+// plus the three phases separately (list build, density, forces) on the 3D
+// box, and the list build (SphSystem::rebuild_neighbours) and one density
+// solve on the 3D column.
 // Counters: particle-updates/s (particles x steps / wall time), neighbour
 // pairs/s (pairs inside the kernel support, counted from both sides, per
 // step), bytes/particle (particle data + neighbour list).
 //   bench_sph --benchmark_out=sph.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <random>
 
+#include "mote/core/units.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/forces.hpp"
 #include "mote/sph/lattice.hpp"
+#include "mote/sph/settling_column.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {
@@ -90,6 +100,35 @@ std::unique_ptr<SphSystem> make_column(int nx) {
   return sys;
 }
 
+/// The 3D column of sph_dustsettle_multigrain_3d.toml on its lattice (no
+/// relaxation) with one 1 mm species (Epstein, S variable, t_s limited).
+std::unique_ptr<SphSystem> make_column_3d() {
+  SettlingColumn c;
+  c.dim = 3;
+  c.nx = 25;
+  c.width = 0.5;
+  c.z_max = 2.6;
+  c.relax_time = 0.0;
+  SphConfig cfg;
+  cfg.kernel = KernelType::M6;
+  cfg.hfact = 1.0;
+  cfg.alpha = 1.0;
+  cfg.beta = 2.0;
+  auto sys = relax_settling_column(c, cfg).make_system();
+  const mote::units::UnitSystem units = mote::units::unit_system_by_name("10au_msun");
+  DustSettings ds;
+  ds.nspecies = 1;
+  ds.drag = DragLaw::Epstein;
+  ds.variable = DustVariable::SqrtRhoEps;
+  ds.sizes = {0.1 / units.length};  // 1 mm
+  ds.rho_grain = 3.0 / units.density();
+  ds.eps = {0.01};
+  ds.limit_ts = true;
+  sys->set_dust(ds);
+  sys->initialise();
+  return sys;
+}
+
 void set_counters(benchmark::State& state, const SphSystem& sys) {
   const Real n = sys.particles().n;
   const Real pairs = static_cast<Real>(
@@ -145,6 +184,47 @@ void BM_SphPhases3DBox(benchmark::State& state) {
   state.counters["particle_updates_per_s"] = benchmark::Counter(p.n, benchmark::Counter::kIsIterationInvariantRate);
 }
 
+void BM_SphStepColumn3D(benchmark::State& state) {
+  auto sys = make_column_3d();
+  sys->step();  // warm up (list sizes)
+  double rebuild_s = 0.0, plain_s = 0.0;
+  int rebuilds = 0, plain = 0;
+  for (auto _ : state) {
+    const int builds = sys->neighbours().builds();
+    const auto t0 = std::chrono::steady_clock::now();
+    sys->step();
+    Kokkos::fence();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (sys->neighbours().builds() > builds) {
+      rebuild_s += s;
+      ++rebuilds;
+    } else {
+      plain_s += s;
+      ++plain;
+    }
+  }
+  set_counters(state, *sys);
+  state.counters["steps_with_rebuild"] = rebuilds;
+  state.counters["s_per_step_with_rebuild"] = rebuilds > 0 ? rebuild_s / rebuilds : 0.0;
+  state.counters["s_per_step_without_rebuild"] = plain > 0 ? plain_s / plain : 0.0;
+}
+
+void BM_SphPhasesColumn3D(benchmark::State& state) {
+  auto sys = make_column_3d();
+  const SphConfig cfg = sys->config();
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      sys->rebuild_neighbours();
+    } else {
+      compute_density(sys->particles(), sys->neighbours(), sys->box(), cfg);
+    }
+    Kokkos::fence();
+  }
+  state.SetLabel(state.range(0) == 0 ? "neighbour build" : "density");
+  state.counters["particle_updates_per_s"] =
+      benchmark::Counter(sys->particles().n, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 BENCHMARK(BM_SphStep3DBox)
     ->Args({0, 46, 10})
     ->Args({1, 46, 10})
@@ -154,6 +234,8 @@ BENCHMARK(BM_SphStep3DBox)
     ->Iterations(10);
 BENCHMARK(BM_SphStep2DColumn)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(200);
 BENCHMARK(BM_SphPhases3DBox)->Args({0, 46})->Args({1, 46})->Args({2, 46})->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_SphStepColumn3D)->Unit(benchmark::kMillisecond)->Iterations(49);
+BENCHMARK(BM_SphPhasesColumn3D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 

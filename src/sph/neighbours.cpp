@@ -32,16 +32,40 @@ struct CellKeyBinOp {
   }
 };
 
+/// An uninitialised View of n entries (at least n with slack, for the list
+/// arrays whose length varies between builds): the storage of `kept` when it
+/// is large enough and no copy of the list shares it, otherwise new storage.
+template <class V>
+V reuse(V& kept, std::size_t n, const std::string& label, bool slack = false) {
+  const bool fits = slack ? kept.extent(0) >= n : kept.extent(0) == n;
+  if (!fits || kept.use_count() != 1) {
+    kept = V();
+    kept = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), slack ? n + n / 16 : n);
+  }
+  return kept;
+}
+
+RealView2 reuse(RealView2& kept, int n, int dim, const std::string& label) {
+  if (kept.extent(0) != static_cast<std::size_t>(n) || kept.extent(1) != static_cast<std::size_t>(dim) ||
+      kept.use_count() != 1) {
+    kept = RealView2();
+    kept = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), n, dim);
+  }
+  return kept;
+}
+
 KOKKOS_INLINE_FUNCTION int ifloor(Real v) {
   int i = static_cast<int>(v);
   return i > v ? i - 1 : i;
 }
 
-/// Calls f(b, image) for every particle image in the cells that intersect
+/// Calls f(b, image, shift) for every particle image in the cells that intersect
 /// the ball of radius `search` around xa. In a periodic direction the cells
 /// are visited with their image shift (-2 .. +2 box lengths), so a particle
 /// (also a itself) can appear with several images when the search radius
-/// exceeds half the box.
+/// exceeds half the box. Along x the cells of a row that meet the ball have
+/// consecutive keys, so their particles are one range of cell_particles per
+/// image (no per-cell work there); shift[d] = Box::image_shift(image, d).
 template <int Dim, class F>
 KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const Real* xa, Real search, F&& f) {
   int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
@@ -67,9 +91,11 @@ KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const
     return gap * gap;
   };
   auto image_of = [&](int i, int d) {
-    // floor(i / nc) for i in [-2 nc, 3 nc)
+    // floor(i / nc) for i in [-2 nc, 3 nc), no division inside the box
+    if (i >= 0 && i < g.nc[d]) return 0;
     return i < 0 ? -((-i + g.nc[d] - 1) / g.nc[d]) : i / g.nc[d];
   };
+  const Real inv_width0 = 1.0 / g.width[0];
   for (int i2 = lo[2]; i2 <= hi[2]; ++i2) {
     const Real g2 = Dim > 2 ? gap2(i2, 2) : 0.0;
     if (g2 >= s2) continue;
@@ -80,14 +106,22 @@ KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const
       if (g1 >= s2) continue;
       const int sh1 = Dim > 1 ? image_of(i1, 1) : 0;
       const int c1 = i1 - sh1 * g.nc[1];
-      for (int i0 = lo[0]; i0 <= hi[0]; ++i0) {
-        if (g1 + gap2(i0, 0) >= s2) continue;
-        const int sh0 = image_of(i0, 0);
-        const int c0 = i0 - sh0 * g.nc[0];
+      const int row = g.nc[0] * (c1 + g.nc[1] * c2);
+      // The cells of the row within reach of the ball, one image at a time.
+      const Real reach = math::sqrt(s2 - g1);
+      int a0 = ifloor((rel[0] - reach) * inv_width0), b0 = ifloor((rel[0] + reach) * inv_width0);
+      if (a0 < lo[0]) a0 = lo[0];
+      if (b0 > hi[0]) b0 = hi[0];
+      while (a0 <= b0) {
+        const int sh0 = image_of(a0, 0);
+        const int e0 = b0 < (sh0 + 1) * g.nc[0] - 1 ? b0 : (sh0 + 1) * g.nc[0] - 1;
         const int code = (sh0 + 2) + 5 * (sh1 + 2) + 25 * (sh2 + 2);
-        const int cell = c0 + g.nc[0] * (c1 + g.nc[1] * c2);
-        const int end = g.cell_start(cell + 1);
-        for (int s = g.cell_start(cell); s < end; ++s) f(g.cell_particles(s), code);
+        const int sh[3] = {sh0, sh1, sh2};
+        Real shift[3] = {0, 0, 0};
+        for (int d = 0; d < Dim; ++d) shift[d] = sh[d] * (box.hi[d] - box.lo[d]);  // Box::image_shift
+        const int end = g.cell_start(row + e0 - sh0 * g.nc[0] + 1);
+        for (int s = g.cell_start(row + a0 - sh0 * g.nc[0]); s < end; ++s) f(g.cell_particles(s), code, shift);
+        a0 = e0 + 1;
       }
     }
   }
@@ -95,11 +129,11 @@ KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const
 
 /// Returns true when the exact count-then-fill path was taken.
 template <int Dim>
-bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Real skin,
-                const View<int*>& prev_counts) {
+bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Real skin, View<int*> prev_counts,
+                const ReorderParticles& reorder) {
   const int n = p.n;
-  const auto x = p.x;
-  const auto h = p.h;
+  auto x = p.x;
+  auto h = p.h;
   par_for(
       "sph::neighbour_wrap", 0, n, KOKKOS_LAMBDA(int i) {
         for (int d = 0; d < Dim; ++d) x(i, d) = box.wrap(x(i, d), d);
@@ -139,13 +173,18 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     }
     vol *= std::max(xmax[d] - xmin[d], s_min);
   }
-  // Cells of half the smallest support (the search culls cells outside the
-  // ball), but never many more cells than particles.
-  const Real target = std::max(0.5 * s_min, std::pow(vol / std::max(n, 1), 1.0 / Dim));
+  // Cells of a third of the smallest support across the rows (the search
+  // culls rows outside the ball), but not much smaller than the particle
+  // spacing; along the rows (x) kRowSplit times finer, which costs nothing in
+  // the search (a row segment is one range) and trims the candidates beyond
+  // the ball at the ends of each segment.
+  constexpr int kRowSplit = 4;
+  const Real across = std::max(s_min / 3.0, std::pow(vol / std::max(n, 1), 1.0 / Dim));
   CellGrid g;
   long long ncell = 1;
   for (int d = 0; d < Dim; ++d) {
     const Real ext = xmax[d] - xmin[d];
+    const Real target = d == 0 ? across / kRowSplit : across;
     if (box.periodic[d]) {
       g.nc[d] = std::max(1, static_cast<int>(std::floor(ext / target)));
       g.width[d] = ext / g.nc[d];
@@ -160,7 +199,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   const int nc_total = static_cast<int>(ncell);
 
   // Bin particles by cell key.
-  IntView1 keys("sph::cell_key", n);
+  const IntView1 keys = reuse(nl.work.keys, n, "sph::cell_key");
   par_for(
       "sph::neighbour_keys", 0, n, KOKKOS_LAMBDA(int i) {
         int key = 0, stride = 1;
@@ -174,20 +213,36 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   sorter.create_permute_vector();
   const auto perm = sorter.get_permute_vector();
   const auto bin_offsets = sorter.get_bin_offsets();
-  g.cell_start = View<int*>("sph::cell_start", nc_total + 1);
-  g.cell_particles = View<int*>("sph::cell_particles", n);
+  g.cell_start = reuse(nl.grid.cell_start, nc_total + 1, "sph::cell_start");
+  g.cell_particles = reuse(nl.grid.cell_particles, n, "sph::cell_particles");
   const auto cell_start = g.cell_start;
   const auto cell_particles = g.cell_particles;
   par_for(
       "sph::neighbour_cells", 0, n, KOKKOS_LAMBDA(int i) { cell_particles(i) = static_cast<int>(perm(i)); });
+  if (reorder) {
+    // Cell order: particle i of the sorted set was cell_particles(i); the
+    // previous list sizes move with their particles.
+    reorder(cell_particles);
+    x = p.x;
+    h = p.h;
+    if (prev_counts.extent(0) == static_cast<std::size_t>(n)) {
+      const View<int*> moved = reuse(nl.work.moved_counts, n, "sph::neighbour_prev_counts");
+      par_for(
+          "sph::neighbour_prev_counts", 0, n, KOKKOS_LAMBDA(int i) { moved(i) = prev_counts(cell_particles(i)); });
+      prev_counts = moved;
+    }
+    par_for(
+        "sph::neighbour_cells_sorted", 0, n, KOKKOS_LAMBDA(int i) { cell_particles(i) = i; });
+  }
   par_for(
       "sph::neighbour_cell_start", 0, nc_total + 1,
       KOKKOS_LAMBDA(int c) { cell_start(c) = c < nc_total ? static_cast<int>(bin_offsets(c)) : n; });
 
   const Real rfac = radius * (1.0 + eps);
-  IntView1 ngather("sph::ngather", n);
-  IntView1 nreverse("sph::nreverse", n);
-  View<int*> offsets("sph::neighbour_offsets", n + 1);
+  const IntView1 ngather = reuse(nl.work.ngather, n, "sph::ngather");
+  const IntView1 nreverse = reuse(nl.work.nreverse, n, "sph::nreverse");
+  Kokkos::deep_copy(nreverse, 0);
+  const View<int*> offsets = reuse(nl.offsets, n + 1, "sph::neighbour_offsets");
   View<int*> neigh;
   View<unsigned char*> image;
   bool built = false;
@@ -197,7 +252,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     // gather entries fill a segment from the front, reverse entries from the
     // back; a segment that overflows sends the whole build to the exact
     // count-then-fill path below. The segments are then compacted.
-    View<int*> slack("sph::neighbour_slack", n + 1);
+    const View<int*> slack = reuse(nl.work.slack, n + 1, "sph::neighbour_slack");
     Kokkos::parallel_scan(
         "sph::neighbour_slack", Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, int& acc, bool final) {
           if (final) slack(i) = acc;
@@ -205,9 +260,8 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         });
     int total_slack = 0;
     Kokkos::deep_copy(total_slack, Kokkos::subview(slack, n));
-    View<int*> sneigh(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_slack_list"), total_slack);
-    View<unsigned char*> simage(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_slack_images"),
-                                total_slack);
+    const View<int*> sneigh = reuse(nl.work.slack_neigh, total_slack, "sph::neighbour_slack_list", true);
+    const View<unsigned char*> simage = reuse(nl.work.slack_image, total_slack, "sph::neighbour_slack_images", true);
     par_for(
         "sph::neighbour_gather", 0, n, KOKKOS_LAMBDA(int a) {
           Real xa[3] = {0, 0, 0};
@@ -216,14 +270,13 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           const Real sa2 = sa * sa;
           const int begin = slack(a), cap = slack(a + 1) - slack(a);
           int count = 0;
-          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
-            if (b == a && code == no_image()) return;
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code, const Real* shift) {
             Real r2 = 0.0;
             for (int d = 0; d < Dim; ++d) {
-              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              const Real dx = (xa[d] - x(b, d)) - shift[d];  // Box::separation
               r2 += dx * dx;
             }
-            if (r2 < sa2) {
+            if (r2 < sa2 && (b != a || code != no_image())) {
               if (count < cap) {
                 sneigh(begin + count) = b;
                 simage(begin + count) = static_cast<unsigned char>(code);
@@ -255,9 +308,8 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           });
       int total = 0;
       Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
-      neigh = View<int*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbours"), std::max(total, 1));
-      image = View<unsigned char*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::neighbour_images"),
-                                   std::max(total, 1));
+      neigh = reuse(nl.neigh, std::max(total, 1), "sph::neighbours", true);
+      image = reuse(nl.image, std::max(total, 1), "sph::neighbour_images", true);
       const auto nb = neigh;
       const auto im = image;
       par_for(
@@ -288,11 +340,11 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           const Real sa = rfac * h(a) + delta;
           const Real sa2 = sa * sa;
           int count = 0;
-          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code, const Real* shift) {
             if (b == a && code == no_image()) return;
             Real r2 = 0.0;
             for (int d = 0; d < Dim; ++d) {
-              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              const Real dx = (xa[d] - x(b, d)) - shift[d];  // Box::separation
               r2 += dx * dx;
             }
             if (r2 < sa2) {
@@ -310,11 +362,12 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         });
     int total = 0;
     Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
-    neigh = View<int*>("sph::neighbours", std::max(total, 1));
-    image = View<unsigned char*>("sph::neighbour_images", std::max(total, 1));
+    neigh = reuse(nl.neigh, std::max(total, 1), "sph::neighbours", true);
+    image = reuse(nl.image, std::max(total, 1), "sph::neighbour_images", true);
     const auto nb = neigh;
     const auto im = image;
-    IntView1 rfill("sph::rfill", n);
+    const IntView1 rfill = reuse(nl.work.rfill, n, "sph::rfill");
+    Kokkos::deep_copy(rfill, 0);
     par_for(
         "sph::neighbour_fill", 0, n, KOKKOS_LAMBDA(int a) {
           Real xa[3] = {0, 0, 0};
@@ -322,11 +375,11 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           const Real sa = rfac * h(a) + delta;
           const Real sa2 = sa * sa;
           int pos = offsets(a);
-          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code) {
+          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code, const Real* shift) {
             if (b == a && code == no_image()) return;
             Real r2 = 0.0;
             for (int d = 0; d < Dim; ++d) {
-              const Real dx = box.separation(xa[d], x(b, d), code, d);
+              const Real dx = (xa[d] - x(b, d)) - shift[d];  // Box::separation
               r2 += dx * dx;
             }
             if (r2 < sa2) {
@@ -362,8 +415,9 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         }
       });
 
-  RealView1 h_cover("sph::h_cover", n), h_build("sph::h_build", n);
-  RealView2 x_build("sph::x_build", n, Dim);
+  const RealView1 h_cover = reuse(nl.h_cover, n, "sph::h_cover");
+  const RealView1 h_build = reuse(nl.h_build, n, "sph::h_build");
+  const RealView2 x_build = reuse(nl.x_build, n, Dim, "sph::x_build");
   par_for(
       "sph::neighbour_save", 0, n, KOKKOS_LAMBDA(int a) {
         h_cover(a) = h(a) * (1.0 + eps);
@@ -371,7 +425,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         for (int d = 0; d < Dim; ++d) x_build(a, d) = x(a, d);
       });
 
-  View<int*> counts("sph::neighbour_counts", n);
+  const View<int*> counts = reuse(nl.counts, n, "sph::neighbour_counts");
   par_for(
       "sph::neighbour_counts", 0, n, KOKKOS_LAMBDA(int a) { counts(a) = offsets(a + 1) - offsets(a); });
   nl.counts = counts;
@@ -388,7 +442,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
 
 }  // namespace detail
 
-void NeighbourList::build(Particles& p, const Box& box, KernelType kernel, Real skin) {
+void NeighbourList::build(Particles& p, const Box& box, KernelType kernel, Real skin, const ReorderParticles& reorder) {
   if (p.n <= 0) throw std::runtime_error("sph::NeighbourList: no particles");
   const Real radius = kernel_radius(kernel);
   // Previous per-particle list sizes size the single-traversal build.
@@ -396,13 +450,13 @@ void NeighbourList::build(Particles& p, const Box& box, KernelType kernel, Real 
   bool exact = true;
   switch (p.dim) {
     case 1:
-      exact = detail::build_impl<1>(*this, p, box, radius, skin, prev);
+      exact = detail::build_impl<1>(*this, p, box, radius, skin, prev, reorder);
       break;
     case 2:
-      exact = detail::build_impl<2>(*this, p, box, radius, skin, prev);
+      exact = detail::build_impl<2>(*this, p, box, radius, skin, prev, reorder);
       break;
     case 3:
-      exact = detail::build_impl<3>(*this, p, box, radius, skin, prev);
+      exact = detail::build_impl<3>(*this, p, box, radius, skin, prev, reorder);
       break;
     default:
       throw std::invalid_argument("sph::NeighbourList: dimension must be 1, 2 or 3");

@@ -50,13 +50,19 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   }
 }
 
-void OneFluidDust::set_eps(const std::vector<Real>& eps) {
+void OneFluidDust::set_eps(const std::vector<Real>& eps, const IntView1& id) {
   const int n = static_cast<int>(var.extent(0)), ns = s_.nspecies;
   if (static_cast<int>(eps.size()) != n * ns) throw std::invalid_argument("dust: eps needs n x N values");
   auto he = Kokkos::create_mirror_view(var);
+  auto hid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), id);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < ns; ++j) he(i, j) = eps[i * ns + j];
+    for (int j = 0; j < ns; ++j) he(i, j) = eps[static_cast<std::size_t>(hid(i)) * ns + j];
   Kokkos::deep_copy(var, he);
+}
+
+void OneFluidDust::reorder(ParticleReorder& r) {
+  for (RealView2* v : {&var, &var_pred, &dvar, &s_pairs, &ts, &coef, &gforce}) r.apply(*v);
+  for (RealView1* v : {&eps_tot, &eps_ts, &d_tot, &uloc}) r.apply(*v);
 }
 
 void OneFluidDust::initialise(const Particles& p) {
@@ -263,15 +269,11 @@ Real OneFluidDust::thermal_energy(const Particles& p, const SphConfig& cfg) cons
 DustSnapshot OneFluidDust::snapshot(const Particles& p) const {
   DustSnapshot s;
   const int n = p.n, ns = s_.nspecies, dim = p.dim;
-  auto e = eps(p);
-  s.eps = Kokkos::create_mirror(e);
-  Kokkos::deep_copy(s.eps, e);
-  auto hv = Kokkos::create_mirror(p.v);
-  Kokkos::deep_copy(hv, p.v);
-  auto hg = Kokkos::create_mirror(gforce);
-  Kokkos::deep_copy(hg, gforce);
-  auto hts = Kokkos::create_mirror(ts);
-  Kokkos::deep_copy(hts, ts);
+  const IdOrder by_id(p.id);
+  s.eps = by_id(eps(p));
+  const auto hv = by_id(p.v);
+  const auto hg = by_id(gforce);
+  const auto hts = by_id(ts);
   s.v_gas = HostView<Real**>("sph::dust_vgas", n, dim);
   s.dv = HostView<Real***>("sph::dust_dv", n, ns, dim);
   for (int a = 0; a < n; ++a) {

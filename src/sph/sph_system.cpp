@@ -16,11 +16,51 @@ namespace mote::sph {
 
 namespace {
 
-template <class V>
-typename V::HostMirror to_host(const V& v) {
-  auto h = Kokkos::create_mirror(v);  // always a copy, also on host backends
-  Kokkos::deep_copy(h, v);
-  return h;
+/// Kick (half step), drift, predict v and u to the end of the step, and h
+/// from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
+/// starting guess of the h-rho iteration.
+void kick_drift(const Particles& p, bool energy, Real dt) {
+  const int dim = p.dim;
+  const auto x = p.x;
+  const auto v = p.v;
+  const auto a = p.a;
+  const auto vpred = p.vpred;
+  const auto u = p.u;
+  const auto upred = p.upred;
+  const auto dudt = p.dudt;
+  const auto h = p.h;
+  const auto divv = p.divv;
+  const Real hdt = 0.5 * dt;
+  par_for(
+      "sph::kick_drift", 0, p.n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < dim; ++d) {
+          const Real vh = v(i, d) + hdt * a(i, d);
+          v(i, d) = vh;
+          x(i, d) += dt * vh;  // wrapped into the box at the next list rebuild
+          vpred(i, d) = vh + hdt * a(i, d);
+        }
+        h(i) *= math::exp(dt * divv(i) / dim);
+        if (energy) {
+          u(i) += hdt * dudt(i);
+          upred(i) = u(i) + hdt * dudt(i);
+        } else {
+          upred(i) = u(i);
+        }
+      });
+}
+
+/// Second kick with the new accelerations.
+void kick(const Particles& p, bool energy, Real hdt) {
+  const int dim = p.dim;
+  const auto v = p.v;
+  const auto a = p.a;
+  const auto u = p.u;
+  const auto dudt = p.dudt;
+  par_for(
+      "sph::kick", 0, p.n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < dim; ++d) v(i, d) += hdt * a(i, d);
+        if (energy) u(i) += hdt * dudt(i);
+      });
 }
 
 }  // namespace
@@ -78,7 +118,7 @@ void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& 
   if (settings.pdv == DustPdV::Gas && cfg_.eos != EosType::Adiabatic)
     throw std::invalid_argument("dust.pdv = \"gas\" needs sph.eos = \"adiabatic\" (no PdV work when isothermal)");
   dust_ = std::make_shared<OneFluidDust>(settings, p_.n, p_.dim);
-  if (!eps.empty()) dust_->set_eps(eps);
+  if (!eps.empty()) dust_->set_eps(eps, p_.id);
   if (dt_next_ > 0.0) {  // added to a running (e.g. relaxed) system
     dust_->initialise(p_);
     compute_accelerations(p_.v, p_.u);
@@ -86,10 +126,22 @@ void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& 
   }
 }
 
+void SphSystem::rebuild_neighbours() {
+  // Host callback of the build: the particles move into cell order.
+  nl_.build(p_, box_, cfg_.kernel, cfg_.skin, [this](const View<int*>& order) { reorder_particles(order); });
+}
+
+void SphSystem::reorder_particles(const View<int*>& order) {
+  reorder_.set_order(order);
+  reorder_.apply(p_);
+  reorder_.apply(divv_old_);
+  if (dust_) dust_->reorder(reorder_);
+}
+
 void SphSystem::update_density() {
   density_passes_ = 0.0;
   for (int pass = 0; pass < 20; ++pass) {
-    if (nl_.needs_rebuild(p_, box_)) nl_.build(p_, box_, cfg_.kernel, cfg_.skin);
+    if (nl_.needs_rebuild(p_, box_)) rebuild_neighbours();
     const DensityResult r = compute_density(p_, nl_, box_, cfg_);
     density_passes_ += r.mean_iterations;
     if (r.outside_cover == 0) {
@@ -136,46 +188,14 @@ Real SphSystem::timestep() {
 
 Real SphSystem::step() {
   const Real dt = dt_next_;
-  const int dim = p_.dim;
-  const bool energy = cfg_.eos == EosType::Adiabatic;
-  const auto x = p_.x;
-  const auto v = p_.v;
-  const auto a = p_.a;
-  const auto vpred = p_.vpred;
-  const auto u = p_.u;
-  const auto upred = p_.upred;
-  const auto dudt = p_.dudt;
-  const auto h = p_.h;
-  const auto divv = p_.divv;
   const Real hdt = 0.5 * dt;
-  // Kick (half step), drift, predict v and u to the end of the step, and h
-  // from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
-  // starting guess of the h-rho iteration.
-  par_for(
-      "sph::kick_drift", 0, p_.n, KOKKOS_LAMBDA(int i) {
-        for (int d = 0; d < dim; ++d) {
-          const Real vh = v(i, d) + hdt * a(i, d);
-          v(i, d) = vh;
-          x(i, d) += dt * vh;  // wrapped into the box at the next list rebuild
-          vpred(i, d) = vh + hdt * a(i, d);
-        }
-        h(i) *= math::exp(dt * divv(i) / dim);
-        if (energy) {
-          u(i) += hdt * dudt(i);
-          upred(i) = u(i) + hdt * dudt(i);
-        } else {
-          upred(i) = u(i);
-        }
-      });
+  const bool energy = cfg_.eos == EosType::Adiabatic;
+  kick_drift(p_, energy, dt);
   if (dust_) dust_->kick_predict(p_, hdt);
   time_ += dt;
-  compute_accelerations(vpred, upred);
-  // Second kick with the new accelerations.
-  par_for(
-      "sph::kick", 0, p_.n, KOKKOS_LAMBDA(int i) {
-        for (int d = 0; d < dim; ++d) v(i, d) += hdt * a(i, d);
-        if (energy) u(i) += hdt * dudt(i);
-      });
+  // A neighbour rebuild in here reorders the particles (new Views).
+  compute_accelerations(p_.vpred, p_.upred);
+  kick(p_, energy, hdt);
   if (dust_) dust_->kick(p_, hdt);
   if (cfg_.cullen_dehnen) update_cullen_dehnen(p_, divv_old_, cfg_, dt);
   ++steps_;
@@ -190,7 +210,10 @@ void SphSystem::rebuild_neighbours_as_built(const RealView2& x_build, const Real
   p_.h = RealView1("sph::h_rebuild", p_.n);
   Kokkos::deep_copy(p_.x, x_build);
   Kokkos::deep_copy(p_.h, h_build);
-  nl_.build(p_, box_, cfg_.kernel, cfg_.skin);  // the wrap is the identity on built positions
+  // The wrap is the identity on built positions, and the checkpointed
+  // particles are in the cell order of that build (cells of the same x and h
+  // extremes), so the build needs no reordering.
+  nl_.build(p_, box_, cfg_.kernel, cfg_.skin);
   p_.x = x;
   p_.h = h;
 }
@@ -255,19 +278,20 @@ Diagnostics SphSystem::diagnostics() const {
 }
 
 Snapshot SphSystem::snapshot() const {
+  const IdOrder by_id(p_.id);
   Snapshot s;
   s.time = time_;
-  s.x = to_host(p_.x);
+  s.x = by_id(p_.x);
   for (int i = 0; i < p_.n; ++i)
     for (int d = 0; d < p_.dim; ++d) s.x(i, d) = box_.wrap(s.x(i, d), d);
-  s.v = to_host(p_.v);
-  s.h = to_host(p_.h);
-  s.rho = to_host(p_.rho);
-  s.u = to_host(p_.u);
-  s.P = to_host(p_.P);
-  s.m = to_host(p_.m);
-  s.type = to_host(p_.type);
-  s.id = to_host(p_.id);
+  s.v = by_id(p_.v);
+  s.h = by_id(p_.h);
+  s.rho = by_id(p_.rho);
+  s.u = by_id(p_.u);
+  s.P = by_id(p_.P);
+  s.m = by_id(p_.m);
+  s.type = by_id(p_.type);
+  s.id = by_id(p_.id);
   return s;
 }
 

@@ -84,12 +84,13 @@ void check_multigrain_times(bool limit_ts) {
   const double gamma = 5.0 / 3.0, eps = 0.16;
   const double sizes[3] = {1e-3, 1e-2, 1e-1}, fractions[3] = {0.01, 0.05, 0.1};
   const OneFluidDust& d = *sys.dust();
-  auto ts = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.ts);
-  auto coef = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.coef);
-  auto ets = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.eps_ts);
-  auto dtot = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d.d_tot);
+  const IdOrder by_id(sys.particles().id);  // as the snapshot
+  const auto ts = by_id(d.ts);
+  const auto coef = by_id(d.coef);
+  const auto ets = by_id(d.eps_ts);
+  const auto dtot = by_id(d.d_tot);
   const Snapshot snap = sys.snapshot();
-  auto cs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sys.particles().cs);
+  const auto cs = by_id(sys.particles().cs);
   int capped = 0;
   for (int a = 0; a < 50; a += 7) {
     // Gas sound speed from P = (gamma - 1)(1 - eps) rho u (PL15 eq. 14): c_s^2 = gamma (gamma - 1) u.
@@ -123,10 +124,13 @@ TEST(SphDustLaws, NegativeFloorAccounting) {
   p.allocate(n, 1);
   Kokkos::deep_copy(p.m, 0.5);
   Kokkos::deep_copy(p.rho, 1.0);
+  auto id = Kokkos::create_mirror_view(p.id);
+  for (int i = 0; i < n; ++i) id(i) = i;
+  Kokkos::deep_copy(p.id, id);
   DustSettings ds;
   ds.nspecies = 2;
   OneFluidDust d(ds, n, 1);
-  d.set_eps({0.1, 0.2, 1e-6, 0.0, 0.3, 0.0, 2e-6, 1e-6, 0.0, 0.1, 0.05, 0.05});
+  d.set_eps({0.1, 0.2, 1e-6, 0.0, 0.3, 0.0, 2e-6, 1e-6, 0.0, 0.1, 0.05, 0.05}, p.id);
   d.initialise(p);
   auto dv = Kokkos::create_mirror_view(d.dvar);
   const double rates[12] = {-0.1, 0.1, -4e-5, 0.0, 0.2, -1e-5, 0.0, 0.0, -1e-4, 0.0, 0.0, 0.0};

@@ -13,8 +13,16 @@
 // so that the stored images stay correct in between. A rebuild traverses the
 // cells once, into per-particle segments sized from the previous list, and
 // compacts them; the first build (or an overflowing segment) uses an exact
-// count-then-fill pair of traversals.
+// count-then-fill pair of traversals. The list and work arrays are reused
+// between builds (the list arrays hold at least, not exactly, the entries). A build may reorder the particles into
+// cell order (spatial locality for every later particle loop): the sorted
+// cell keys give the order, a caller-supplied function permutes all the
+// per-particle state (SphSystem: ParticleReorder), and the list is then built
+// on the reordered particles; inside a cell the particles keep their previous
+// order, so the order is reproducible from the stored state alone.
 #pragma once
+
+#include <functional>
 
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
@@ -39,11 +47,16 @@ struct CellGrid {
   }
 };
 
+/// Permutes every per-particle View into order: new index i takes the
+/// particle at old index order(i).
+using ReorderParticles = std::function<void(const View<int*>& order)>;
+
 class NeighbourList {
  public:
   /// Wraps the positions into the box and builds the list for them and the
-  /// current smoothing lengths.
-  void build(Particles& p, const Box& box, KernelType kernel, Real skin);
+  /// current smoothing lengths; with reorder, first moves the particles into
+  /// cell order through it (the list then indexes the reordered particles).
+  void build(Particles& p, const Box& box, KernelType kernel, Real skin, const ReorderParticles& reorder = {});
 
   /// True if the list no longer covers all pairs within the kernel support:
   /// a particle moved more than delta/2 or an h grew past its cover.
@@ -66,6 +79,13 @@ class NeighbourList {
   RealView1 h_build;           ///< smoothing lengths at build time
   Real delta = 0.0;            ///< absolute displacement skin
   CellGrid grid;
+
+  /// Work arrays of a build, kept (like the list arrays, unless a copy of the
+  /// list shares them) so that a rebuild allocates nothing once sizes settle.
+  struct Work {
+    View<int*> keys, ngather, nreverse, rfill, slack, moved_counts, slack_neigh;
+    View<unsigned char*> slack_image;
+  } work;
 
  private:
   int n_ = 0;

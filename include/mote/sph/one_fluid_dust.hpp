@@ -32,12 +32,13 @@
 #include "mote/sph/dust_settings.hpp"
 #include "mote/sph/neighbours.hpp"
 #include "mote/sph/particles.hpp"
+#include "mote/sph/reorder.hpp"
 
 namespace mote::sph {
 
 class SphSystem;
 
-/// Host copies of the dust fields of a snapshot.
+/// Host copies of the dust fields of a snapshot, in id order.
 struct DustSnapshot {
   HostView<Real**> eps;    ///< eps_j (n x N)
   HostView<Real**> v_gas;  ///< reconstructed gas velocity v - sum_j eps_j Dv_j (n x dim)
@@ -51,8 +52,11 @@ class OneFluidDust {
   const DustSettings& settings() const { return s_; }
   int nspecies() const { return s_.nspecies; }
 
-  /// Sets eps_j from host data (n x N, row-major) before initialise().
-  void set_eps(const std::vector<Real>& eps);
+  /// Sets eps_j from host data (n x N, row-major; row k for the particle with
+  /// id k, ids as stored in id) before initialise().
+  void set_eps(const std::vector<Real>& eps, const IntView1& id);
+  /// Permutes the per-particle dust state with the particles (SphSystem reorders on every neighbour rebuild).
+  void reorder(ParticleReorder& r);
   /// Converts the initial eps_j into the evolved variable.
   void initialise(const Particles& p);
 

@@ -1,6 +1,8 @@
 // SPH particle storage: structure of arrays in flat Kokkos Views (positions
 // and velocities are n x dim). Particle types are data (ParticleType), not
-// separate code paths; the id survives any reordering. Fields follow PL15
+// separate code paths; the id survives any reordering (SphSystem reorders the
+// particles into cell order on every neighbour rebuild: ParticleReorder lists
+// the fields it permutes, so a new per-particle field goes there too). Fields follow PL15
 // sec. 3: m, h, rho (eq. 24), Omega (eq. 28), u and du/dt (eq. 27), P and c_s
 // (eq. 14 or isothermal), the viscosity parameter alpha (eq. 32).
 #pragma once

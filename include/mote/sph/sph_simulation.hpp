@@ -1,7 +1,9 @@
 // io::Simulation for SPH problems: the run loop advances an SphSystem,
 // snapshots hold positions, velocities, h, rho, u, P, m, particle type and id
-// (an XDMF point cloud), checkpoints hold the complete particle state and the
-// clock, and the history holds mass, momentum and energy (PL15 eq. 40
+// (an XDMF point cloud) with the particles in id order (row k is id k),
+// checkpoints hold the complete particle state in storage order (the cell
+// order of the last neighbour build, which the restart continues from) and
+// the clock, and the history holds mass, momentum and energy (PL15 eq. 40
 // without dust).
 #pragma once
 

@@ -5,6 +5,11 @@
 // velocities and energies predicted to the end of the step; the global
 // time-step follows the Courant and force criteria plus registered hooks.
 // Dust modules and problem executables drive the gas through this class.
+// Every neighbour rebuild reorders the particles into cell order (locality):
+// all per-particle state, here and in the dust module, is permuted, and the
+// particle Views are replaced, so hold no copies of them across a step; the
+// id identifies a particle. Snapshots list the particles in id order,
+// checkpoints in storage order (which a restart continues from).
 #pragma once
 
 #include <functional>
@@ -18,6 +23,7 @@
 #include "mote/sph/external.hpp"
 #include "mote/sph/neighbours.hpp"
 #include "mote/sph/particles.hpp"
+#include "mote/sph/reorder.hpp"
 
 namespace mote::sph {
 
@@ -31,7 +37,8 @@ struct ParticleSetup {
   int size() const { return static_cast<int>(m.size()); }
 };
 
-/// Host copies of the fields written to a snapshot.
+/// Host copies of the fields written to a snapshot, in id order (row k is
+/// the particle with id k).
 struct Snapshot {
   Real time = 0.0;
   HostView<Real**> x, v;
@@ -70,8 +77,8 @@ class SphSystem {
 
   /// Switches on the one-fluid dust (PL15, HPL18) after set_particles(), either
   /// before initialise() or on a running system (dust added after a gas-only
-  /// relaxation, PL15 sec. 4.4.1); eps (n x N, row-major) may be empty when
-  /// the settings give uniform fractions.
+  /// relaxation, PL15 sec. 4.4.1); eps (n x N, row-major, row k for the
+  /// particle with id k) may be empty when the settings give uniform fractions.
   void set_dust(const DustSettings& settings, const std::vector<Real>& eps = {});
   OneFluidDust* dust() { return dust_.get(); }
   const OneFluidDust* dust() const { return dust_.get(); }
@@ -84,8 +91,17 @@ class SphSystem {
   void add_timestep_constraint(TimestepConstraint c) { dt_hooks_.push_back(std::move(c)); }
 
   /// Recomputes neighbours (if needed), density, EOS, forces, external
-  /// accelerations and damping for the velocities vel and energies u.
+  /// accelerations and damping for the velocities vel and energies u: pass
+  /// the particle members themselves (p.v or p.vpred, p.u or p.upred), which
+  /// a rebuild reorders and replaces.
   void compute_accelerations(const RealView2& vel, const RealView1& u);
+
+  /// Rebuilds the neighbour list now (as a step does when the list expires),
+  /// reordering the particles into cell order.
+  void rebuild_neighbours();
+  /// Permutes every per-particle View (particles, divv_old, dust) into order:
+  /// new index i takes the particle at old index order(i).
+  void reorder_particles(const View<int*>& order);
 
   Diagnostics diagnostics() const;
   Snapshot snapshot() const;
@@ -134,6 +150,7 @@ class SphSystem {
   std::vector<ExternalForce> external_;
   std::vector<TimestepConstraint> dt_hooks_;
   std::shared_ptr<OneFluidDust> dust_;
+  ParticleReorder reorder_;
   Real time_ = 0.0;
   Real dt_next_ = 0.0;
   long long steps_ = 0;
