@@ -1,8 +1,7 @@
-// Cell binning (Kokkos::BinSort on cell keys) and symmetric CSR neighbour list
+// Cell binning (a counting sort on cell keys) and symmetric CSR neighbour list
 // with count-then-fill; see include/mote/sph/neighbours.hpp for the method.
 #include "mote/sph/neighbours.hpp"
 
-#include <Kokkos_Sort.hpp>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,23 +13,6 @@ namespace mote::sph {
 // A named namespace: nvcc requires the functions that enclose extended
 // (KOKKOS_LAMBDA) lambdas to have external linkage.
 namespace detail {
-
-/// BinSort operator for integer cell keys; inside a cell particles keep their
-/// index order, so the list is identical on every backend.
-struct CellKeyBinOp {
-  int nbins = 0;
-  CellKeyBinOp() = default;
-  explicit CellKeyBinOp(int n) : nbins(n) {}
-  template <class ViewType>
-  KOKKOS_INLINE_FUNCTION int bin(ViewType& keys, const int& i) const {
-    return keys(i);
-  }
-  KOKKOS_INLINE_FUNCTION int max_bins() const { return nbins; }
-  template <class ViewType, class I1, class I2>
-  KOKKOS_INLINE_FUNCTION bool operator()(ViewType& /*keys*/, const I1& i1, const I2& i2) const {
-    return i1 < i2;
-  }
-};
 
 /// An uninitialised View of n entries (at least n with slack, for the list
 /// arrays whose length varies between builds): the storage of `kept` when it
@@ -52,6 +34,42 @@ RealView2 reuse(RealView2& kept, int n, int dim, const std::string& label) {
     kept = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), n, dim);
   }
   return kept;
+}
+
+/// Stable counting sort of the particles by cell key: cell_start(c) is the
+/// first slot of cell c (cell_start(ncell) = n) and cell_particles holds the
+/// particles of each cell in index order, so the list is identical on every
+/// backend. `fill` (ncell entries) is work space. Allocates nothing.
+void sort_by_cell(const IntView1& keys, int n, int ncell, const View<int*>& fill, const View<int*>& cell_start,
+                  const View<int*>& cell_particles) {
+  par_for("sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
+  par_for("sph::neighbour_cell_count", 0, n, KOKKOS_LAMBDA(int i) { Kokkos::atomic_increment(&fill(keys(i))); });
+  Kokkos::parallel_scan(
+      "sph::neighbour_cell_start", Kokkos::RangePolicy<ExecSpace>(0, ncell + 1),
+      KOKKOS_LAMBDA(int c, int& acc, bool final) {
+        if (final) cell_start(c) = acc;
+        if (c < ncell) acc += fill(c);
+      });
+  par_for("sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
+  par_for(
+      "sph::neighbour_cell_fill", 0, n, KOKKOS_LAMBDA(int i) {
+        const int c = keys(i);
+        cell_particles(cell_start(c) + Kokkos::atomic_fetch_add(&fill(c), 1)) = i;
+      });
+  // Parallel fills arrive in any order: insertion sort of each cell (a few particles).
+  par_for(
+      "sph::neighbour_cell_sort", 0, ncell, KOKKOS_LAMBDA(int c) {
+        const int b = cell_start(c), e = cell_start(c + 1);
+        for (int s = b + 1; s < e; ++s) {
+          const int key = cell_particles(s);
+          int t = s - 1;
+          while (t >= b && cell_particles(t) > key) {
+            cell_particles(t + 1) = cell_particles(t);
+            --t;
+          }
+          cell_particles(t + 1) = key;
+        }
+      });
 }
 
 KOKKOS_INLINE_FUNCTION int ifloor(Real v) {
@@ -209,16 +227,11 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         }
         keys(i) = key;
       });
-  Kokkos::BinSort<IntView1, CellKeyBinOp> sorter(keys, CellKeyBinOp(nc_total), true);
-  sorter.create_permute_vector();
-  const auto perm = sorter.get_permute_vector();
-  const auto bin_offsets = sorter.get_bin_offsets();
-  g.cell_start = reuse(nl.grid.cell_start, nc_total + 1, "sph::cell_start");
+  g.cell_start = reuse(nl.grid.cell_start, nc_total + 1, "sph::cell_start", true);
   g.cell_particles = reuse(nl.grid.cell_particles, n, "sph::cell_particles");
   const auto cell_start = g.cell_start;
   const auto cell_particles = g.cell_particles;
-  par_for(
-      "sph::neighbour_cells", 0, n, KOKKOS_LAMBDA(int i) { cell_particles(i) = static_cast<int>(perm(i)); });
+  sort_by_cell(keys, n, nc_total, reuse(nl.work.cell_fill, nc_total, "sph::cell_fill", true), cell_start, cell_particles);
   if (reorder) {
     // Cell order: particle i of the sorted set was cell_particles(i); the
     // previous list sizes move with their particles.
@@ -234,9 +247,6 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     par_for(
         "sph::neighbour_cells_sorted", 0, n, KOKKOS_LAMBDA(int i) { cell_particles(i) = i; });
   }
-  par_for(
-      "sph::neighbour_cell_start", 0, nc_total + 1,
-      KOKKOS_LAMBDA(int c) { cell_start(c) = c < nc_total ? static_cast<int>(bin_offsets(c)) : n; });
 
   const Real rfac = radius * (1.0 + eps);
   const IntView1 ngather = reuse(nl.work.ngather, n, "sph::ngather");
@@ -425,9 +435,12 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         for (int d = 0; d < Dim; ++d) x_build(a, d) = x(a, d);
       });
 
-  const View<int*> counts = reuse(nl.counts, n, "sph::neighbour_counts");
+  // The counts of this build go to the spare buffer: the previous counts
+  // (prev_counts) are still referenced; the two swap on every build.
+  const View<int*> counts = reuse(nl.work.spare_counts, n, "sph::neighbour_counts");
   par_for(
       "sph::neighbour_counts", 0, n, KOKKOS_LAMBDA(int a) { counts(a) = offsets(a + 1) - offsets(a); });
+  nl.work.spare_counts = nl.counts;
   nl.counts = counts;
   nl.offsets = offsets;
   nl.neigh = neigh;

@@ -136,6 +136,7 @@ void SphSystem::reorder_particles(const View<int*>& order) {
   reorder_.apply(p_);
   reorder_.apply(divv_old_);
   if (dust_) dust_->reorder(reorder_);
+  reorder_.release_order();
 }
 
 void SphSystem::update_density() {

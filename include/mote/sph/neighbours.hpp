@@ -1,5 +1,5 @@
 // O(N) neighbour finding for SPH. Particles are binned on the device into cells
-// of about the smallest kernel support (cell keys sorted with Kokkos::BinSort);
+// of about the smallest kernel support (a stable counting sort of cell keys);
 // each particle a gathers the candidates within S_a = R h_a (1 + skin) + delta,
 // and the list is made symmetric by adding, for every pair found only from the
 // larger-h side, the reverse entry. The list of a therefore holds every b with
@@ -83,7 +83,7 @@ class NeighbourList {
   /// Work arrays of a build, kept (like the list arrays, unless a copy of the
   /// list shares them) so that a rebuild allocates nothing once sizes settle.
   struct Work {
-    View<int*> keys, ngather, nreverse, rfill, slack, moved_counts, slack_neigh;
+    View<int*> keys, ngather, nreverse, rfill, slack, moved_counts, slack_neigh, cell_fill, spare_counts;
     View<unsigned char*> slack_image;
   } work;
 

@@ -20,6 +20,8 @@ class ParticleReorder {
  public:
   /// order(i): index, before the reordering, of the particle that moves to i.
   void set_order(const View<int*>& order) { order_ = order; }
+  /// Lets go of the order (the neighbour build reuses its storage).
+  void release_order() { order_ = View<int*>(); }
 
   /// Permutes one per-particle View (n, or n x k); Views without particles
   /// (not allocated) are left alone.

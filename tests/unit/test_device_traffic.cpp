@@ -1,0 +1,217 @@
+// No host-device traffic and no View allocation inside a time-step (DESIGN.md,
+// Kokkos habits; issue 17): Kokkos Tools callbacks count every deep copy and
+// every allocation while an engine takes N steps (max_dt + advance), after a
+// few warm-up steps have sized the reusable buffers. A fill of a View with a
+// scalar is a device kernel and is not counted. A copy of one value into a host
+// scalar (a read-back, the same synchronisation as a reduction) is counted
+// apart: a neighbour rebuild needs a few to size its lists, a step without one
+// needs none. Bulk copies and allocations must be zero. Cases: SPH one-fluid
+// dust with rebuilds on every step (dustyshock) and without (dustywave), and
+// the disc grid with dust, evolving gas and coagulation on the driver. The
+// callbacks fire in every backend, so Serial runs catch what a GPU would pay.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mote/core/comm.hpp"
+#include "mote/core/deck.hpp"
+#include "mote/core/units.hpp"
+#include "mote/disc/disc_simulation.hpp"
+#include "mote/sph/dust_problems.hpp"
+#include "mote/sph/sph_simulation.hpp"
+
+namespace {
+
+using namespace mote;
+
+/// Counts deep copies and allocations between construction and destruction
+/// through the Kokkos Tools callbacks; keeps the first few labels for messages.
+class TrafficCounter {
+ public:
+  TrafficCounter() {
+    state() = State{};
+    Kokkos::Tools::Experimental::set_begin_deep_copy_callback(&on_deep_copy);
+    Kokkos::Tools::Experimental::set_allocate_data_callback(&on_allocate);
+  }
+  ~TrafficCounter() {
+    Kokkos::Tools::Experimental::set_begin_deep_copy_callback(nullptr);
+    Kokkos::Tools::Experimental::set_allocate_data_callback(nullptr);
+  }
+  TrafficCounter(const TrafficCounter&) = delete;
+  TrafficCounter& operator=(const TrafficCounter&) = delete;
+
+  int deep_copies() const { return state().copies; }
+  int scalar_reads() const { return state().scalar_reads; }
+  int allocations() const { return state().allocations; }
+  std::string report() const {
+    std::ostringstream os;
+    os << state().scalar_reads << " scalar read-backs; " << state().copies << " deep copies:";
+    for (const auto& [label, count] : state().copy_labels) os << " [" << label << "] x " << count;
+    os << "; " << state().allocations << " allocations:";
+    for (const auto& [label, count] : state().allocation_labels) os << " [" << label << "] x " << count;
+    return os.str();
+  }
+
+ private:
+  struct State {
+    int copies = 0, scalar_reads = 0, allocations = 0;
+    std::map<std::string, int> copy_labels, allocation_labels;  // label -> count
+  };
+  static State& state() {
+    static State s;
+    return s;
+  }
+  static void keep(std::map<std::string, int>& labels, const std::string& label) { ++labels[label]; }
+  static void on_deep_copy(Kokkos::Tools::SpaceHandle dst_space, const char* dst_name, const void*,
+                           Kokkos::Tools::SpaceHandle src_space, const char* src_name, const void*, std::uint64_t bytes) {
+    if (std::string(src_name) == "Scalar") return;  // deep_copy(view, value): a fill kernel, no transfer
+    if (std::string(dst_name) == "Scalar") {         // deep_copy(value, view): one value back to the host
+      ++state().scalar_reads;
+      return;
+    }
+    ++state().copies;
+    keep(state().copy_labels,
+         std::string(src_space.name) + ":" + src_name + " -> " + dst_space.name + ":" + dst_name + " (" + std::to_string(bytes) + " B)");
+  }
+  static void on_allocate(Kokkos::Tools::SpaceHandle space, const char* name, const void*, std::uint64_t bytes) {
+    ++state().allocations;
+    keep(state().allocation_labels, std::string(space.name) + ":" + name);
+  }
+};
+
+template <class Sim>
+void take_steps(Sim& sim, int steps, double& t) {
+  for (int k = 0; k < steps; ++k) {
+    const double dt = sim.max_dt();
+    sim.advance(t, dt);
+    t += dt;
+  }
+}
+
+/// PL15 sec. 4.2 dustyshock at a tenth of the resolution, three dust species:
+/// particles move through the shock, so the neighbour list is rebuilt.
+std::unique_ptr<sph::SphSimulation> dusty_shock() {
+  sph::SphConfig cfg;
+  cfg.kernel = sph::KernelType::M4;
+  cfg.gamma = 5.0 / 3.0;
+  sph::DustSettings ds;
+  ds.nspecies = 3;
+  ds.drag = sph::DragLaw::ConstantK;
+  ds.k_drag = {1000.0 / 3};
+  ds.eps = {0.5 / 3};
+  sph::DustyShock shock;
+  shock.dx_left = 0.01;
+  return std::make_unique<sph::SphSimulation>(sph::dustyshock(shock, cfg, ds).make_system(), units::UnitSystem{});
+}
+
+const char* kDiscDeck = R"(
+[grid]
+nr = 12
+R_in = 8.0
+R_out = 12.0
+r_spacing = "log"
+ntheta = 16
+theta_min = -0.15
+theta_max = 0.15
+[boundaries]
+inner = "closed"
+outer = "closed"
+lower = "closed"
+upper = "closed"
+[gas]
+R_ref = 10.0
+T_ref = 88.5
+alpha = 1e-2
+Sigma0 = 5e-6
+inner_boundary = "closed"
+outer_boundary = "closed"
+[driver]
+evolve_gas = true
+[coagulation]
+kernel = "physical"
+)";
+
+std::unique_ptr<disc::DiscSimulation> coupled_disc(int species) {
+  static const core::DeckSchema schema = [] {
+    core::DeckSchema d;
+    disc::DiscSimulation::declare(d);
+    return d;
+  }();
+  std::ostringstream sizes;
+  sizes.precision(17);
+  sizes << "dust.sizes=[";
+  // 1 to 10 um: 7 bins per mass decade for 22 species (RBO24 sec. 5).
+  for (int k = 0; k < species; ++k) sizes << (k ? ", " : "") << 1e-4 * std::pow(10.0, double(k) / (species - 1));
+  sizes << "]";
+  const auto deck = core::Deck::parse(kDiscDeck, "test_device_traffic", schema, {sizes.str()});
+  return std::make_unique<disc::DiscSimulation>(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+                                                disc::DiscSimulation::well_mixed(std::vector<double>(species, 1e-3), 1e-40));
+}
+
+}  // namespace
+
+/// PL15 sec. 4.1 dustywave, three species, amplitude 1e-4: no particle moves
+/// far enough for a rebuild.
+std::unique_ptr<sph::SphSimulation> dusty_wave() {
+  sph::SphConfig cfg;
+  cfg.kernel = sph::KernelType::M4;
+  cfg.gamma = 5.0 / 3.0;
+  cfg.alpha = 0.0;
+  cfg.alpha_u = 0.0;
+  sph::DustSettings ds;
+  ds.nspecies = 3;
+  ds.drag = sph::DragLaw::ConstantK;
+  ds.k_drag = {100.0 / 3};
+  ds.eps = {0.5 / 3};
+  sph::DustyWave wave;
+  wave.n = 64;
+  return std::make_unique<sph::SphSimulation>(sph::dustywave(wave, cfg, ds).make_system(), units::UnitSystem{});
+}
+
+TEST(DeviceTraffic, SphStepsWithRebuildsCopyAndAllocateNothing) {
+  auto sim = dusty_shock();
+  double t = 0;
+  take_steps(*sim, 5, t);
+  const int builds0 = sim->system().neighbours().builds();
+  constexpr int kSteps = 40;
+  TrafficCounter counter;
+  take_steps(*sim, kSteps, t);
+  const int rebuilds = sim->system().neighbours().builds() - builds0;
+  ASSERT_GT(rebuilds, 0) << "the steps must include neighbour rebuilds";
+  EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+  EXPECT_EQ(counter.allocations(), 0) << counter.report();
+  EXPECT_LE(counter.scalar_reads(), 3 * rebuilds) << counter.report();
+}
+
+TEST(DeviceTraffic, SphStepsWithoutRebuildsReadNothingBack) {
+  auto sim = dusty_wave();
+  double t = 0;
+  take_steps(*sim, 5, t);
+  const int builds0 = sim->system().neighbours().builds();
+  TrafficCounter counter;
+  take_steps(*sim, 40, t);
+  ASSERT_EQ(sim->system().neighbours().builds(), builds0) << "this case must run without neighbour rebuilds";
+  EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+  EXPECT_EQ(counter.scalar_reads(), 0) << counter.report();
+  EXPECT_EQ(counter.allocations(), 0) << counter.report();
+}
+
+TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {
+  auto sim = coupled_disc(22);
+  double t = 0;
+  take_steps(*sim, 5, t);
+  const long long calls0 = sim->driver().calls(0);
+  {
+    TrafficCounter counter;
+    take_steps(*sim, 30, t);
+    EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+    EXPECT_EQ(counter.scalar_reads(), 0) << counter.report();
+    EXPECT_EQ(counter.allocations(), 0) << counter.report();
+  }
+  EXPECT_GT(sim->driver().calls(0), calls0) << "the steps must include coagulation calls";
+}
