@@ -219,6 +219,7 @@ std::vector<io::Diagnostic> SphSimulation::diagnostics() const {
           {"momentum_x", d.momentum[0]},
           {"momentum_y", d.momentum[1]},
           {"momentum_z", d.momentum[2]},
+          {"momentum_abs", d.momentum_abs},
           {"kinetic", d.kinetic},
           {"thermal", d.thermal},
           {"energy", d.energy},

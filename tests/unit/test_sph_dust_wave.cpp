@@ -16,6 +16,13 @@ using mote::Real;
 using namespace mote::sph;
 using namespace mote::sph::testing;
 
+// A7 momentum of the wave, relative to sum m |v|: the pair forces are O(c_s^2)
+// and cancel between particles only to round-off, ~1e-16 of the force per
+// step, which is 1.2-1.5e-12 of the momentum of a wave of amplitude 1e-4
+// (measured over 1253-43691 steps). Shocks and the Sod tube, whose momentum is
+// of the order of the forces, hold 1e-12.
+constexpr double kWaveMomentumTol = 2e-12;
+
 struct WaveErrors {
   double l2_vg = 0.0, l2_vd = 0.0, l2_tva = 0.0;
   double mass_drift = 0.0, dust_drift = 0.0, mom_drift = 0.0, energy_drift = 0.0;
@@ -87,7 +94,7 @@ WaveErrors run_wave(const DustyWaveSetup& w, double t_end) {
   r.l2_tva = et.value();
   r.mass_drift = std::fabs(d1.mass - d0.mass) / d0.mass;
   r.dust_drift = std::fabs(d1.dust_mass - d1.dust_floored - d0.dust_mass) / d0.dust_mass;
-  r.mom_drift = std::fabs(d1.momentum[0] - d0.momentum[0]) / d0.mass;  // per unit mass (sum m |v| ~ 1e-4 m)
+  r.mom_drift = std::fabs(d1.momentum[0] - d0.momentum[0]) / d0.momentum_abs;  // relative to sum m |v| (A7)
   r.energy_drift = std::fabs(d1.energy - d0.energy) / d0.energy;
   r.steps = sys.steps();
   return r;
@@ -126,7 +133,7 @@ TEST(SphDustWave, AnalyticAtStrongDrag) {
         EXPECT_LT(r.l2_vd, tol);
         EXPECT_LT(r.mass_drift, 1e-12);
         EXPECT_LT(r.dust_drift, 1e-12);
-        EXPECT_LT(r.mom_drift, 1e-12);
+        EXPECT_LT(r.mom_drift, kWaveMomentumTol);
         EXPECT_LT(r.energy_drift, 1e-6);
       }
     }
@@ -236,7 +243,7 @@ TEST(SphDustWave, ConservationVariants) {
                     var == DustVariable::Epsilon ? "eps" : "S", en == DustEnergy::U ? "u" : "u~", name(disc),
                     r.mass_drift, r.dust_drift, r.mom_drift, r.energy_drift);
         EXPECT_LT(r.mass_drift, 1e-12);
-        EXPECT_LT(r.mom_drift, 1e-12);
+        EXPECT_LT(r.mom_drift, kWaveMomentumTol);
         // eps: linear in the variable, exact; S: quadratic, exact with the projection (dust.project_mass).
         EXPECT_LT(r.dust_drift, 1e-12);
         EXPECT_LT(r.energy_drift, 1e-8);
