@@ -23,8 +23,7 @@ struct Setup {
   coag::MassGrid grid;
   coag::GasCells gas;
   mote::RealView2 sigma;
-  Setup(int cells, int species, Real a_max)
-      : grid(coag::MassGrid::from_sizes(1e-5, a_max, species, 1.6)) {
+  Setup(int cells, int species, Real a_max) : grid(coag::MassGrid::from_sizes(1e-5, a_max, species, 1.6)) {
     s.species = species;
     s.a_min = 1e-5;
     s.a_max = a_max;
@@ -74,7 +73,8 @@ void BM_CoagulationRates(benchmark::State& state) {
   // Each call evaluates the kernel policy once per unordered pair and the RHS visits each ordered pair once.
   const double pairs = double(cells) * species * (species + 1) / 2;
   state.counters["pair_evaluations_per_s"] = benchmark::Counter(pairs, benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["cell_species_updates_per_s"] = benchmark::Counter(double(cells) * species, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cell_species_updates_per_s"] =
+      benchmark::Counter(double(cells) * species, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_CoagulationStep(benchmark::State& state) {
@@ -92,7 +92,8 @@ void BM_CoagulationStep(benchmark::State& state) {
   }
   state.counters["cells"] = cells;
   state.counters["substeps_per_cell_per_call"] = double(sub) / (double(state.iterations()) * cells);
-  state.counters["pair_rhs_per_s"] = benchmark::Counter(double(sub) * 3 * species * (species + 1) / 2, benchmark::Counter::kIsRate);
+  state.counters["pair_rhs_per_s"] =
+      benchmark::Counter(double(sub) * 3 * species * (species + 1) / 2, benchmark::Counter::kIsRate);
 }
 
 void BM_CoagulationSteadyStateE3(benchmark::State& state) {
@@ -103,7 +104,11 @@ void BM_CoagulationSteadyStateE3(benchmark::State& state) {
     s.vertically_integrated = true;
     const auto grid = coag::MassGrid::from_sizes(5e-5, 0.1, species, 1.6);
     coag::GasCells gas;
-    const auto mk = [](const char* n, Real v) { mote::RealView1 x(std::string(n), 1); Kokkos::deep_copy(x, v); return x; };
+    const auto mk = [](const char* n, Real v) {
+      mote::RealView1 x(std::string(n), 1);
+      Kokkos::deep_copy(x, v);
+      return x;
+    };
     const Real R = 20 * cgs::au;
     gas.sound_speed = mk("cs", std::sqrt(cgs::k_B * 36.0 / (2.4 * cgs::m_H)));
     gas.density = mk("sigma_g", 16.98);
@@ -115,7 +120,8 @@ void BM_CoagulationSteadyStateE3(benchmark::State& state) {
     auto h = Kokkos::create_mirror_view(sigma);
     double norm = 0;
     for (int k = 0; k < species; ++k) norm += grid.grain_size(k) <= 1e-4 ? std::sqrt(grid.grain_size(k)) : 0.0;
-    for (int k = 0; k < species; ++k) h(0, k) = grid.grain_size(k) <= 1e-4 ? 0.1698 * std::sqrt(grid.grain_size(k)) / norm : 0.0;
+    for (int k = 0; k < species; ++k)
+      h(0, k) = grid.grain_size(k) <= 1e-4 ? 0.1698 * std::sqrt(grid.grain_size(k)) / norm : 0.0;
     Kokkos::deep_copy(sigma, h);
     state.ResumeTiming();
     long long sub = 0;

@@ -6,11 +6,11 @@
 // fluxes (4 x 32 bytes) and the stage kernel reads Q, both fluxes and the
 // source primitives and writes the new primitives (5 x 32 bytes), plus the
 // final conserved state (32 bytes): 608 bytes per cell-species update.
+#include <cmath>
+
 #include "bench_main.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/disc/dust_dynamics.hpp"
-
-#include <cmath>
 
 namespace {
 
@@ -34,20 +34,22 @@ void BM_DustStep(benchmark::State& state) {
   disc::GasFields gas(grid.nr_total(), grid.nt_total());
   auto Rc = grid.Rc;
   auto rho = gas.rho, cs2 = gas.cs2, nu = gas.nu, vphi = gas.vphi;
-  par_for("bench::gas", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-    rho(i, j) = 1e-3 * math::exp(-0.5 * math::square(0.1 * j)) / Rc(i);
-    cs2(i, j) = 2.5e-3 / Rc(i);
-    nu(i, j) = 1e-3 * 0.05 * Rc(i);
-    vphi(i, j) = 1.0 / math::sqrt(Rc(i));
-  });
+  par_for(
+      "bench::gas", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        rho(i, j) = 1e-3 * math::exp(-0.5 * math::square(0.1 * j)) / Rc(i);
+        cs2(i, j) = 2.5e-3 / Rc(i);
+        nu(i, j) = 1e-3 * 0.05 * Rc(i);
+        vphi(i, j) = 1.0 / math::sqrt(Rc(i));
+      });
   dust.set_gas(gas);
   auto W = dust.W;
-  par_for("bench::dust", 0, grid.nr_total(), 0, grid.nt_total(), 0, ns, KOKKOS_LAMBDA(int i, int j, int s) {
-    W(i, j, s, disc::kRho) = 0.01 * rho(i, j);
-    W(i, j, s, disc::kVR) = 0.0;
-    W(i, j, s, disc::kVphi) = vphi(i, j);
-    W(i, j, s, disc::kVZ) = 0.0;
-  });
+  par_for(
+      "bench::dust", 0, grid.nr_total(), 0, grid.nt_total(), 0, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+        W(i, j, s, disc::kRho) = 0.01 * rho(i, j);
+        W(i, j, s, disc::kVR) = 0.0;
+        W(i, j, s, disc::kVphi) = vphi(i, j);
+        W(i, j, s, disc::kVZ) = 0.0;
+      });
   dust.initialise_from_primitives();
   const double dt = 1e-4;
   for (auto _ : state) {
@@ -55,8 +57,10 @@ void BM_DustStep(benchmark::State& state) {
     Kokkos::fence();
   }
   const double updates = double(n) * n * ns;
-  state.counters["cell_species_updates_per_s"] = benchmark::Counter(updates, benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["model_bytes_per_s"] = benchmark::Counter(updates * kBytesPerUpdate, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cell_species_updates_per_s"] =
+      benchmark::Counter(updates, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["model_bytes_per_s"] =
+      benchmark::Counter(updates * kBytesPerUpdate, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace

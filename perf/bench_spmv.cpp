@@ -17,30 +17,36 @@ Matrix laplacian(int n) {
   const int rows = n * n;
   mote::View<int*> row_map("row_map", rows + 1);
   // Row i has 1 + (number of in-grid neighbours) entries.
-  mote::par_for("bench::count", 0, rows, KOKKOS_LAMBDA(int r) {
-    const int i = r % n, j = r / n;
-    row_map(r + 1) = 1 + (i > 0) + (i < n - 1) + (j > 0) + (j < n - 1);
-  });
-  Kokkos::parallel_scan("bench::scan", Kokkos::RangePolicy<mote::ExecSpace>(0, rows + 1),
-                        KOKKOS_LAMBDA(int r, int& sum, bool final) {
-                          const int c = row_map(r);
-                          sum += c;
-                          if (final) row_map(r) = sum;
-                        });
+  mote::par_for(
+      "bench::count", 0, rows, KOKKOS_LAMBDA(int r) {
+        const int i = r % n, j = r / n;
+        row_map(r + 1) = 1 + (i > 0) + (i < n - 1) + (j > 0) + (j < n - 1);
+      });
+  Kokkos::parallel_scan(
+      "bench::scan", Kokkos::RangePolicy<mote::ExecSpace>(0, rows + 1), KOKKOS_LAMBDA(int r, int& sum, bool final) {
+        const int c = row_map(r);
+        sum += c;
+        if (final) row_map(r) = sum;
+      });
   int nnz = 0;
   Kokkos::deep_copy(nnz, Kokkos::subview(row_map, rows));
   mote::View<int*> cols("cols", nnz);
   mote::RealView1 vals("vals", nnz);
-  mote::par_for("bench::fill", 0, rows, KOKKOS_LAMBDA(int r) {
-    const int i = r % n, j = r / n;
-    int k = row_map(r);
-    auto put = [&](int c, mote::Real v) { cols(k) = c; vals(k) = v; ++k; };
-    if (j > 0) put(r - n, -1.0);
-    if (i > 0) put(r - 1, -1.0);
-    put(r, 4.0);
-    if (i < n - 1) put(r + 1, -1.0);
-    if (j < n - 1) put(r + n, -1.0);
-  });
+  mote::par_for(
+      "bench::fill", 0, rows, KOKKOS_LAMBDA(int r) {
+        const int i = r % n, j = r / n;
+        int k = row_map(r);
+        auto put = [&](int c, mote::Real v) {
+          cols(k) = c;
+          vals(k) = v;
+          ++k;
+        };
+        if (j > 0) put(r - n, -1.0);
+        if (i > 0) put(r - 1, -1.0);
+        put(r, 4.0);
+        if (i < n - 1) put(r + 1, -1.0);
+        if (j < n - 1) put(r + n, -1.0);
+      });
   return Matrix("laplacian", rows, rows, nnz, vals, row_map, cols);
 }
 
@@ -53,7 +59,8 @@ void BM_Spmv(benchmark::State& state) {
     KokkosSparse::spmv("N", 1.0, A, x, 0.0, y);
     Kokkos::fence();
   }
-  const double bytes = A.nnz() * (sizeof(mote::Real) * 2 + sizeof(int)) + (n * n + 1) * sizeof(int) + n * n * sizeof(mote::Real);
+  const double bytes =
+      A.nnz() * (sizeof(mote::Real) * 2 + sizeof(int)) + (n * n + 1) * sizeof(int) + n * n * sizeof(mote::Real);
   state.counters["rows_per_s"] = benchmark::Counter(double(n) * n, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["bytes_per_s"] = benchmark::Counter(bytes, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["nnz"] = A.nnz();

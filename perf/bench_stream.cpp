@@ -14,10 +14,12 @@ void BM_StreamTriad(benchmark::State& state) {
   Kokkos::deep_copy(c, 2.0);
   const mote::Real s = 3.0;
   for (auto _ : state) {
-    mote::par_for("bench::triad", 0, n, KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
+    mote::par_for(
+        "bench::triad", 0, n, KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
     Kokkos::fence();
   }
-  state.counters["bytes_per_s"] = benchmark::Counter(3.0 * sizeof(mote::Real) * n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bytes_per_s"] =
+      benchmark::Counter(3.0 * sizeof(mote::Real) * n, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace

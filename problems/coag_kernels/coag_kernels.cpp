@@ -31,7 +31,8 @@ struct Params {
 
 /// Analytic mass density of bin k at time t (exponential initial distribution).
 double reference(const Params& p, const coag::MassGrid& grid, int k, double t) {
-  return p.N0 * p.m0 * coag::analytic::bin_mass(p.kernel, grid.edge(k) / p.m0, grid.edge(k + 1) / p.m0, t, p.K0, p.N0, p.m0);
+  return p.N0 * p.m0 *
+         coag::analytic::bin_mass(p.kernel, grid.edge(k) / p.m0, grid.edge(k + 1) / p.m0, t, p.K0, p.N0, p.m0);
 }
 
 std::vector<double> initial(const Params& p, const coag::MassGrid& grid) {
@@ -62,9 +63,10 @@ class CoagKernels final : public coag::StandaloneCells {
       num += std::fabs(rho[k] - ref);
       den += ref;
     }
-    mote::logging::info(mote::logging::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, ",
-                                      p_.kernel.c_str(), elapsed_, grid_.bins_per_mass_decade(), num / den),
-                    summary());
+    mote::logging::info(
+        mote::logging::format("coag_kernels: kernel = %s, t = %g, bins per decade = %.2f, L1_rel = %.6e, ",
+                              p_.kernel.c_str(), elapsed_, grid_.bins_per_mass_decade(), num / den),
+        summary());
   }
 
  private:
@@ -80,13 +82,18 @@ void declare(mote::core::DeckSchema& s) {
   s.real("analytic.x_max").default_value(1e7).greater_than(0.0).doc("Last centre mass / m0.");
   s.real("analytic.bins_per_decade").default_value(10.0).greater_than(1.0).doc("Bins per mass decade.");
   s.integer("analytic.cells").default_value(1LL).min(1).doc("Identical cells integrated side by side.");
-  s.real("analytic.call_interval").default_value(0.0).min(0.0).unit("code time").doc("Time between coagulation calls; 0 = one call per output interval.");
+  s.real("analytic.call_interval")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code time")
+      .doc("Time between coagulation calls; 0 = one call per output interval.");
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto s = coag::settings_from_deck(d);
-  if (s.kernel == "physical") throw mote::core::DeckError("coag_kernels: coagulation.kernel must be constant, additive or product");
+  if (s.kernel == "physical")
+    throw mote::core::DeckError("coag_kernels: coagulation.kernel must be constant, additive or product");
   Params p;
   p.kernel = s.kernel;
   p.K0 = s.kernel_coefficient;
@@ -106,7 +113,8 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
 }  // namespace
 
 int main(int argc, char** argv) {
-  return mote::io::run_problem(argc, argv,
-                               {"coag_kernels", "Smoluchowski equation with constant/additive/product kernels vs analytic solutions",
-                                declare, create});
+  return mote::io::run_problem(
+      argc, argv,
+      {"coag_kernels", "Smoluchowski equation with constant/additive/product kernels vs analytic solutions", declare,
+       create});
 }

@@ -68,9 +68,10 @@ class CoagSteadyState final : public coag::StandaloneCells {
                         {"g/cm^2", 1.0}) {
     const Real cs = sound_speed(p, s);
     const Real st_frag = s.v_frag * s.v_frag / (3 * p.alpha * cs * cs);
-    mote::logging::info(mote::logging::format("coag_steady_state: c_s = %.4e cm/s, St_frag = %.3e, "
-                                      "a_frag = 2 Sigma_g St_frag / (pi rho_m) = %.3e cm",
-                                      cs, st_frag, 2 * p.sigma_gas * st_frag / (M_PI * s.rho_m)));
+    mote::logging::info(
+        mote::logging::format("coag_steady_state: c_s = %.4e cm/s, St_frag = %.3e, "
+                              "a_frag = 2 Sigma_g St_frag / (pi rho_m) = %.3e cm",
+                              cs, st_frag, 2 * p.sigma_gas * st_frag / (M_PI * s.rho_m)));
   }
 
   void write_snapshot(mote::io::SnapshotWriter& out) const override {
@@ -101,10 +102,22 @@ void declare(mote::core::DeckSchema& s) {
   s.real("disc.sigma_gas").default_value(16.98).greater_than(0.0).unit("g/cm^2").doc("Gas surface density.");
   s.real("disc.alpha").default_value(1e-3).greater_than(0.0).doc("Turbulence parameter alpha.");
   s.real("disc.dust_to_gas").default_value(0.01).greater_than(0.0).doc("Initial dust-to-gas surface density ratio.");
-  s.real("disc.a_init_max").default_value(1e-4).greater_than(0.0).unit("cm").doc("Largest grain of the initial MRN distribution.");
-  s.real("disc.headwind").default_value(0.0).min(0.0).unit("cm/s").doc("Head-wind speed eta v_K for radial/azimuthal drift estimates (0: none).");
+  s.real("disc.a_init_max")
+      .default_value(1e-4)
+      .greater_than(0.0)
+      .unit("cm")
+      .doc("Largest grain of the initial MRN distribution.");
+  s.real("disc.headwind")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("cm/s")
+      .doc("Head-wind speed eta v_K for radial/azimuthal drift estimates (0: none).");
   s.integer("disc.cells").default_value(1LL).min(1).doc("Identical cells integrated side by side.");
-  s.real("disc.call_interval").default_value(0.0).min(0.0).unit("s").doc("Time between coagulation calls; 0 = one call per output interval.");
+  s.real("disc.call_interval")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("s")
+      .doc("Time between coagulation calls; 0 = one call per output interval.");
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
@@ -112,7 +125,8 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
   auto s = coag::settings_from_deck(d);
   if (s.kernel != "physical") throw mote::core::DeckError("coag_steady_state: coagulation.kernel must be \"physical\"");
   if (!s.vertically_integrated)
-    throw mote::core::DeckError("coag_steady_state evolves surface densities: set coagulation.vertically_integrated = true");
+    throw mote::core::DeckError(
+        "coag_steady_state evolves surface densities: set coagulation.vertically_integrated = true");
   Params p;
   p.radius = d.real("disc.radius") * cgs::au;
   p.m_star = d.real("disc.star_mass") * cgs::M_sun;
@@ -132,7 +146,7 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
 }  // namespace
 
 int main(int argc, char** argv) {
-  return mote::io::run_problem(argc, argv,
-                               {"coag_steady_state", "growth-fragmentation steady state at one radius (RBO24 Fig. 10)", declare,
-                                create});
+  return mote::io::run_problem(
+      argc, argv,
+      {"coag_steady_state", "growth-fragmentation steady state at one radius (RBO24 Fig. 10)", declare, create});
 }

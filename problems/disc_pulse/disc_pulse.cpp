@@ -46,12 +46,13 @@ class DiscPulse final : public io::Simulation {
     auto Rc = grid_.Rc, tan_tc = grid_.tan_tc;
     const Pulse p = pulse_;
     const Real floor = dust_.settings().floor;
-    par_for("disc_pulse::init", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-      W(i, j, 0, disc::kRho) = math::max(p(Rc(i), Rc(i) * tan_tc(j), 0.0), floor);
-      W(i, j, 0, disc::kVR) = p.vx;
-      W(i, j, 0, disc::kVphi) = 0.0;
-      W(i, j, 0, disc::kVZ) = p.vy;
-    });
+    par_for(
+        "disc_pulse::init", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+          W(i, j, 0, disc::kRho) = math::max(p(Rc(i), Rc(i) * tan_tc(j), 0.0), floor);
+          W(i, j, 0, disc::kVR) = p.vx;
+          W(i, j, 0, disc::kVphi) = 0.0;
+          W(i, j, 0, disc::kVZ) = p.vy;
+        });
     dust_.initialise_from_primitives();
   }
 
@@ -80,24 +81,26 @@ class DiscPulse final : public io::Simulation {
     tau_ = f.read_attribute_real("/state", "tau");
   }
 
-  std::vector<io::Diagnostic> diagnostics() const override {
-    return {{"dust_mass", dust_.mass(0)}};
-  }
+  std::vector<io::Diagnostic> diagnostics() const override { return {{"dust_mass", dust_.mass(0)}}; }
 
   std::optional<io::NonFinite> find_non_finite() const override {
     auto Q = dust_.Q;
     const int ng = grid_.ng, nt = grid_.nt;
     int first = std::numeric_limits<int>::max();
-    par_reduce("disc_pulse::non_finite", ng, ng + grid_.nr, ng, ng + nt, KOKKOS_LAMBDA(int i, int j, int& f) {
-      for (int k = 0; k < disc::kDustVars; ++k)
-        if (!math::isfinite(Q(i, j, 0, k))) f = math::min(f, (i - ng) * nt + (j - ng));
-    }, Kokkos::Min<int>(first));
+    par_reduce(
+        "disc_pulse::non_finite", ng, ng + grid_.nr, ng, ng + nt,
+        KOKKOS_LAMBDA(int i, int j, int& f) {
+          for (int k = 0; k < disc::kDustVars; ++k)
+            if (!math::isfinite(Q(i, j, 0, k))) f = math::min(f, (i - ng) * nt + (j - ng));
+        },
+        Kokkos::Min<int>(first));
     if (first == std::numeric_limits<int>::max()) return std::nullopt;
     return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d)", first / nt + grid_.i_offset, first % nt)};
   }
 
   void finish(double) override {
-    logging::info(logging::format("L2 error (RBO24 sec. 3.6 norm): %.6e on %d x %d cells", l2_error(), grid_.nr_global, grid_.nt));
+    logging::info(logging::format("L2 error (RBO24 sec. 3.6 norm): %.6e on %d x %d cells", l2_error(), grid_.nr_global,
+                                  grid_.nt));
   }
 
  private:
@@ -131,7 +134,11 @@ void declare(core::DeckSchema& s) {
   disc::DustSettings::declare(s);
   s.table("pulse", "Gaussian pulse of RBO24 eq. 38.");
   s.real("pulse.amplitude").default_value(1.0).greater_than(0.0).doc("A.");
-  s.real("pulse.diffusivity").default_value(1.0).greater_than(0.0).unit("code length^2 / code time").doc("D (= nu with rho_g = 1, Sc = 1).");
+  s.real("pulse.diffusivity")
+      .default_value(1.0)
+      .greater_than(0.0)
+      .unit("code length^2 / code time")
+      .doc("D (= nu with rho_g = 1, Sc = 1).");
   s.real("pulse.x0").default_value(30.0).unit("code length").doc("Initial centre R.");
   s.real("pulse.y0").default_value(0.0).unit("code length").doc("Initial centre Z.");
   s.real("pulse.t0").default_value(0.1).greater_than(0.0).unit("code time").doc("Pulse time at the start of the run.");
@@ -143,7 +150,8 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto spec = mesh::GridSpec::from_deck(d);
   auto dust = disc::DustSettings::from_deck(d, ctx.units, disc::StellarGravity{0.0, false});
-  if (dust.sizes.size() != 1) throw core::DeckError("disc_pulse evolves one dust species: give one value in dust.sizes");
+  if (dust.sizes.size() != 1)
+    throw core::DeckError("disc_pulse evolves one dust species: give one value in dust.sizes");
   if (dust.drag || dust.gravity) throw core::DeckError("disc_pulse needs dust.drag = false and dust.gravity = false");
   Pulse p;
   p.A = d.real("pulse.amplitude");
@@ -159,5 +167,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return io::run_problem(argc, argv, {"disc_pulse", "RBO24 C1: advection-diffusion of a Gaussian pulse on the (R, theta) grid", declare, create});
+  return io::run_problem(
+      argc, argv,
+      {"disc_pulse", "RBO24 C1: advection-diffusion of a Gaussian pulse on the (R, theta) grid", declare, create});
 }

@@ -36,7 +36,8 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   auto eps = d.real_array("settling.dust_to_gas");
   if (eps.empty()) eps.assign(ns, 0.01);
   if (eps.size() != ns)
-    throw core::DeckError(mote::logging::cat("settling.dust_to_gas has ", eps.size(), " values for ", ns, " dust species"));
+    throw core::DeckError(
+        mote::logging::cat("settling.dust_to_gas has ", eps.size(), " values for ", ns, " dust species"));
   return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units,
                                                 disc::DiscSimulation::well_mixed(eps, d.real("dust.floor")));
 }

@@ -32,11 +32,14 @@ enum class Limiter { None, VanLeer, MC };
 
 KOKKOS_INLINE_FUNCTION Real limited_slope(Real dl, Real dr, Limiter limiter) {
   switch (limiter) {
-    case Limiter::None: return 0.5 * (dl + dr);
-    case Limiter::VanLeer: return dl * dr > 0 ? 2.0 * dl * dr / (dl + dr) : 0.0;
+    case Limiter::None:
+      return 0.5 * (dl + dr);
+    case Limiter::VanLeer:
+      return dl * dr > 0 ? 2.0 * dl * dr / (dl + dr) : 0.0;
     case Limiter::MC:
       if (dl * dr <= 0) return 0.0;
-      return (dl > 0 ? 1.0 : -1.0) * math::min(math::min(2.0 * math::fabs(dl), 2.0 * math::fabs(dr)), 0.5 * math::fabs(dl + dr));
+      return (dl > 0 ? 1.0 : -1.0) *
+             math::min(math::min(2.0 * math::fabs(dl), 2.0 * math::fabs(dr)), 0.5 * math::fabs(dl + dr));
   }
   return 0.0;
 }
@@ -81,8 +84,9 @@ class GaussianPulse final : public mote::io::Simulation {
     rows_ = base + (comm.rank() < extra ? 1 : 0);
     row_begin_ = comm.rank() * base + std::min(comm.rank(), extra);
     if (rows_ < kGhost)
-      throw mote::core::DeckError(mote::logging::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost, " rows on each of ",
-                                                 comm.size(), " ranks; increase grid.ny or use fewer ranks"));
+      throw mote::core::DeckError(mote::logging::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost,
+                                                     " rows on each of ", comm.size(),
+                                                     " ranks; increase grid.ny or use fewer ranks"));
     rho_ = RealView2("density", rows_ + 2 * kGhost, p.nx + 2 * kGhost);
     stage_ = RealView2("density_stage", rows_ + 2 * kGhost, p.nx + 2 * kGhost);
     rhs_ = RealView2("rhs", rows_, p.nx);
@@ -101,10 +105,11 @@ class GaussianPulse final : public mote::io::Simulation {
     const Params q = p_;
     const int j0 = row_begin_;
     auto rho = rho_;
-    mote::par_for("gaussian_pulse::init", 0, rows_, 0, q.nx, KOKKOS_LAMBDA(int j, int i) {
-      const Real x = q.x_min + (i + 0.5) * q.dx(), y = q.y_min + (j0 + j + 0.5) * q.dy();
-      rho(j + kGhost, i + kGhost) = analytic(q, x, y, 0.0);
-    });
+    mote::par_for(
+        "gaussian_pulse::init", 0, rows_, 0, q.nx, KOKKOS_LAMBDA(int j, int i) {
+          const Real x = q.x_min + (i + 0.5) * q.dx(), y = q.y_min + (j0 + j + 0.5) * q.dy();
+          rho(j + kGhost, i + kGhost) = analytic(q, x, y, 0.0);
+        });
   }
 
   double max_dt() override {
@@ -131,7 +136,8 @@ class GaussianPulse final : public mote::io::Simulation {
     std::vector<double> ref(rho.size());
     for (int j = 0; j < rows_; ++j)
       for (int i = 0; i < p_.nx; ++i)
-        ref[j * p_.nx + i] = analytic(p_, p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (row_begin_ + j + 0.5) * p_.dy(), tau_);
+        ref[j * p_.nx + i] =
+            analytic(p_, p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (row_begin_ + j + 0.5) * p_.dy(), tau_);
     out.cell_field("density", rho.data(), {"code density", 1.0});
     out.cell_field("analytic", ref.data(), {"code density", 1.0});
   }
@@ -155,10 +161,12 @@ class GaussianPulse final : public mote::io::Simulation {
   std::vector<mote::io::Diagnostic> diagnostics() const override {
     auto rho = rho_;
     Real mass = 0, peak = 0;
-    mote::par_reduce("gaussian_pulse::mass", kGhost, rows_ + kGhost, kGhost, p_.nx + kGhost,
-                     KOKKOS_LAMBDA(int j, int i, Real& m) { m += rho(j, i); }, mass);
-    mote::par_reduce("gaussian_pulse::peak", kGhost, rows_ + kGhost, kGhost, p_.nx + kGhost,
-                     KOKKOS_LAMBDA(int j, int i, Real& m) { m = math::max(m, rho(j, i)); }, Kokkos::Max<Real>(peak));
+    mote::par_reduce(
+        "gaussian_pulse::mass", kGhost, rows_ + kGhost, kGhost, p_.nx + kGhost,
+        KOKKOS_LAMBDA(int j, int i, Real& m) { m += rho(j, i); }, mass);
+    mote::par_reduce(
+        "gaussian_pulse::peak", kGhost, rows_ + kGhost, kGhost, p_.nx + kGhost,
+        KOKKOS_LAMBDA(int j, int i, Real& m) { m = math::max(m, rho(j, i)); }, Kokkos::Max<Real>(peak));
     return {{"mass", comm_.sum(mass * p_.dx() * p_.dy())}, {"max_density", comm_.max(peak)}};
   }
 
@@ -166,15 +174,17 @@ class GaussianPulse final : public mote::io::Simulation {
     auto rho = rho_;
     const int nx = p_.nx;
     int first = INT_MAX;
-    mote::par_reduce("gaussian_pulse::find_non_finite", kGhost, rows_ + kGhost, kGhost, nx + kGhost,
-                     KOKKOS_LAMBDA(int j, int i, int& f) {
-                       if (!math::isfinite(rho(j, i))) f = math::min(f, (j - kGhost) * nx + (i - kGhost));
-                     },
-                     Kokkos::Min<int>(first));
+    mote::par_reduce(
+        "gaussian_pulse::find_non_finite", kGhost, rows_ + kGhost, kGhost, nx + kGhost,
+        KOKKOS_LAMBDA(int j, int i, int& f) {
+          if (!math::isfinite(rho(j, i))) f = math::min(f, (j - kGhost) * nx + (i - kGhost));
+        },
+        Kokkos::Min<int>(first));
     if (first == INT_MAX) return std::nullopt;
     const int j = first / nx + row_begin_, i = first % nx;
-    return mote::io::NonFinite{"density", mote::logging::format("cell (i, j) = (%d, %d), x = %g, y = %g", i, j,
-                                                            p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (j + 0.5) * p_.dy())};
+    return mote::io::NonFinite{
+        "density", mote::logging::format("cell (i, j) = (%d, %d), x = %g, y = %g", i, j, p_.x_min + (i + 0.5) * p_.dx(),
+                                         p_.y_min + (j + 0.5) * p_.dy())};
   }
 
   void finish(double) override {
@@ -182,34 +192,39 @@ class GaussianPulse final : public mote::io::Simulation {
     double sq = 0, peak = 0;
     for (int j = 0; j < rows_; ++j)
       for (int i = 0; i < p_.nx; ++i) {
-        const double ref = analytic(p_, p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (row_begin_ + j + 0.5) * p_.dy(), tau_);
+        const double ref =
+            analytic(p_, p_.x_min + (i + 0.5) * p_.dx(), p_.y_min + (row_begin_ + j + 0.5) * p_.dy(), tau_);
         sq += (rho[j * p_.nx + i] - ref) * (rho[j * p_.nx + i] - ref);
         peak = std::max(peak, std::fabs(ref));
       }
     const double l2 = std::sqrt(comm_.sum(sq) / (double(p_.nx) * p_.ny)) / comm_.max(peak);
-    mote::logging::info(mote::logging::format("L2_rel error against the analytic solution: %.6e (nx = %d, ny = %d)", l2, p_.nx, p_.ny));
+    mote::logging::info(
+        mote::logging::format("L2_rel error against the analytic solution: %.6e (nx = %d, ny = %d)", l2, p_.nx, p_.ny));
   }
 
   /// Fills ghost columns (periodic in x, local) and ghost rows (periodic in y, via neighbours).
   void fill_ghosts(const RealView2& u) {
     const int nx = p_.nx, rows = rows_, width = nx + 2 * kGhost;
-    mote::par_for("gaussian_pulse::ghost_x", kGhost, rows + kGhost, 0, kGhost, KOKKOS_LAMBDA(int j, int g) {
-      u(j, g) = u(j, nx + g);
-      u(j, nx + kGhost + g) = u(j, kGhost + g);
-    });
+    mote::par_for(
+        "gaussian_pulse::ghost_x", kGhost, rows + kGhost, 0, kGhost, KOKKOS_LAMBDA(int j, int g) {
+          u(j, g) = u(j, nx + g);
+          u(j, nx + kGhost + g) = u(j, kGhost + g);
+        });
     auto send = halo_send_;
     // send[0..): my first kGhost interior rows (to the rank below), then my last kGhost rows (to the rank above)
-    mote::par_for("gaussian_pulse::pack_halo", 0, kGhost, 0, width, KOKKOS_LAMBDA(int g, int i) {
-      send(g * width + i) = u(kGhost + g, i);
-      send((kGhost + g) * width + i) = u(rows + g, i);
-    });
+    mote::par_for(
+        "gaussian_pulse::pack_halo", 0, kGhost, 0, width, KOKKOS_LAMBDA(int g, int i) {
+          send(g * width + i) = u(kGhost + g, i);
+          send((kGhost + g) * width + i) = u(rows + g, i);
+        });
     auto recv = halo_recv_;
     const int half = kGhost * width;
     if (comm_.size() == 1) {  // periodic onto itself: stays on the device
-      mote::par_for("gaussian_pulse::wrap_halo", 0, half, KOKKOS_LAMBDA(int k) {
-        recv(k) = send(half + k);
-        recv(half + k) = send(k);
-      });
+      mote::par_for(
+          "gaussian_pulse::wrap_halo", 0, half, KOKKOS_LAMBDA(int k) {
+            recv(k) = send(half + k);
+            recv(half + k) = send(k);
+          });
     } else {  // the buffers travel through host memory (no GPU-aware MPI needed)
       Kokkos::deep_copy(halo_send_h_, send);
       const int below = (comm_.rank() - 1 + comm_.size()) % comm_.size(), above = (comm_.rank() + 1) % comm_.size();
@@ -218,10 +233,11 @@ class GaussianPulse final : public mote::io::Simulation {
       comm_.sendrecv(halo_send_h_.data() + half, half, above, halo_recv_h_.data(), half, below, 12);
       Kokkos::deep_copy(recv, halo_recv_h_);
     }
-    mote::par_for("gaussian_pulse::unpack_halo", 0, kGhost, 0, width, KOKKOS_LAMBDA(int g, int i) {
-      u(g, i) = recv(g * width + i);
-      u(rows + kGhost + g, i) = recv((kGhost + g) * width + i);
-    });
+    mote::par_for(
+        "gaussian_pulse::unpack_halo", 0, kGhost, 0, width, KOKKOS_LAMBDA(int g, int i) {
+          u(g, i) = recv(g * width + i);
+          u(rows + kGhost + g, i) = recv((kGhost + g) * width + i);
+        });
   }
 
   void compute_rhs(const RealView2& u) {
@@ -229,23 +245,25 @@ class GaussianPulse final : public mote::io::Simulation {
     const Params q = p_;
     auto rhs = rhs_;
     const Real dx = q.dx(), dy = q.dy();
-    mote::par_for("gaussian_pulse::rhs", 0, rows_, 0, q.nx, KOKKOS_LAMBDA(int jj, int ii) {
-      const int j = jj + kGhost, i = ii + kGhost;
-      const Real fxm = face_flux(u(j, i - 2), u(j, i - 1), u(j, i), u(j, i + 1), q.vx, q.D, dx, q.limiter);
-      const Real fxp = face_flux(u(j, i - 1), u(j, i), u(j, i + 1), u(j, i + 2), q.vx, q.D, dx, q.limiter);
-      const Real fym = face_flux(u(j - 2, i), u(j - 1, i), u(j, i), u(j + 1, i), q.vy, q.D, dy, q.limiter);
-      const Real fyp = face_flux(u(j - 1, i), u(j, i), u(j + 1, i), u(j + 2, i), q.vy, q.D, dy, q.limiter);
-      rhs(jj, ii) = -(fxp - fxm) / dx - (fyp - fym) / dy;
-    });
+    mote::par_for(
+        "gaussian_pulse::rhs", 0, rows_, 0, q.nx, KOKKOS_LAMBDA(int jj, int ii) {
+          const int j = jj + kGhost, i = ii + kGhost;
+          const Real fxm = face_flux(u(j, i - 2), u(j, i - 1), u(j, i), u(j, i + 1), q.vx, q.D, dx, q.limiter);
+          const Real fxp = face_flux(u(j, i - 1), u(j, i), u(j, i + 1), u(j, i + 2), q.vx, q.D, dx, q.limiter);
+          const Real fym = face_flux(u(j - 2, i), u(j - 1, i), u(j, i), u(j + 1, i), q.vy, q.D, dy, q.limiter);
+          const Real fyp = face_flux(u(j - 1, i), u(j, i), u(j + 1, i), u(j + 2, i), q.vy, q.D, dy, q.limiter);
+          rhs(jj, ii) = -(fxp - fxm) / dx - (fyp - fym) / dy;
+        });
   }
 
   /// out = (1 - w) a + w b + c dt rhs, on the interior.
   void combine(const RealView2& out, const RealView2& a, const RealView2& b, Real w, Real c_dt) {
     auto rhs = rhs_;
-    mote::par_for("gaussian_pulse::update", 0, rows_, 0, p_.nx, KOKKOS_LAMBDA(int jj, int ii) {
-      const int j = jj + kGhost, i = ii + kGhost;
-      out(j, i) = (1.0 - w) * a(j, i) + w * b(j, i) + c_dt * rhs(jj, ii);
-    });
+    mote::par_for(
+        "gaussian_pulse::update", 0, rows_, 0, p_.nx, KOKKOS_LAMBDA(int jj, int ii) {
+          const int j = jj + kGhost, i = ii + kGhost;
+          out(j, i) = (1.0 - w) * a(j, i) + w * b(j, i) + c_dt * rhs(jj, ii);
+        });
   }
 
  private:
@@ -288,13 +306,23 @@ void declare(mote::core::DeckSchema& s) {
   s.real("transport.diffusivity").greater_than(0.0).unit("code length^2 / code time").doc("Diffusion coefficient D.");
   s.table("pulse", "Initial Gaussian: rho = background + (A / t0) exp(-r^2 / (4 D t0)).");
   s.real("pulse.amplitude").default_value(1.0).greater_than(0.0).unit("code density x code time").doc("A.");
-  s.real("pulse.t0").greater_than(0.0).unit("code time").doc("Age of the pulse at the start of the run (sets its width).");
+  s.real("pulse.t0")
+      .greater_than(0.0)
+      .unit("code time")
+      .doc("Age of the pulse at the start of the run (sets its width).");
   s.real("pulse.x0").default_value(0.5).unit("code length").doc("Initial centre x.");
   s.real("pulse.y0").default_value(0.5).unit("code length").doc("Initial centre y.");
   s.real("pulse.background").default_value(0.0).min(0.0).unit("code density").doc("Uniform background density.");
   s.table("scheme", "Numerical method.");
-  s.real("scheme.cfl").default_value(0.4).greater_than(0.0).max(1.0).doc("Courant number of the combined advection-diffusion limit.");
-  s.string("scheme.limiter").default_value(std::string("none")).one_of({"none", "vanleer", "mc"}).doc("Slope limiter (none = Fromm, unlimited second order).");
+  s.real("scheme.cfl")
+      .default_value(0.4)
+      .greater_than(0.0)
+      .max(1.0)
+      .doc("Courant number of the combined advection-diffusion limit.");
+  s.string("scheme.limiter")
+      .default_value(std::string("none"))
+      .one_of({"none", "vanleer", "mc"})
+      .doc("Slope limiter (none = Fromm, unlimited second order).");
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
@@ -325,6 +353,6 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
 }  // namespace
 
 int main(int argc, char** argv) {
-  return mote::io::run_problem(argc, argv,
-                               {"gaussian_pulse", "advection-diffusion of a Gaussian pulse on a periodic 2D grid", declare, create});
+  return mote::io::run_problem(
+      argc, argv, {"gaussian_pulse", "advection-diffusion of a Gaussian pulse on a periodic 2D grid", declare, create});
 }

@@ -57,8 +57,8 @@ std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const co
     if (std::chrono::duration<double>(now - last).count() < interval) return;
     last = now;
     const double wall = std::chrono::duration<double>(now - start).count(), done = gas.time() / t_relax;
-    logging::info(logging::format("relax %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s", gas.steps(), gas.time(), gas.next_dt(),
-                          100.0 * done, logging::hms(wall * (1.0 - done) / done).c_str()));
+    logging::info(logging::format("relax %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s", gas.steps(), gas.time(),
+                                  gas.next_dt(), 100.0 * done, logging::hms(wall * (1.0 - done) / done).c_str()));
   };
 }
 
@@ -130,8 +130,8 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   auto sys = col.make_system();
   sys->set_dust(ds);
   logging::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
-            ", mid-plane t_s Omega0 of the largest grain = ",
-            sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());
+                ", mid-plane t_s Omega0 of the largest grain = ",
+                sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());
   return std::make_unique<SettleSimulation>(std::move(sys), ctx.units);
 }
 

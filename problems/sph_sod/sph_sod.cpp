@@ -51,7 +51,11 @@ void declare(core::DeckSchema& s) {
   s.table("sod", "Shock-tube set-up.");
   s.integer("sod.dim").default_value(1LL).min(1).max(3).doc("Dimension (y, z periodic for dim > 1).");
   s.real("sod.dx_left").default_value(0.002).greater_than(0.0).unit("code length").doc("Particle spacing on the left.");
-  s.real("sod.cross_section").default_value(0.1).greater_than(0.0).unit("code length").doc("Box length in y, z (dim > 1).");
+  s.real("sod.cross_section")
+      .default_value(0.1)
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Box length in y, z (dim > 1).");
   s.real("sod.rho_left").default_value(1.0).greater_than(0.0).unit("code density").doc("Left density.");
   s.real("sod.P_left").default_value(1.0).greater_than(0.0).unit("code pressure").doc("Left pressure.");
   s.real("sod.rho_right").default_value(0.125).greater_than(0.0).unit("code density").doc("Right density.");
@@ -60,7 +64,8 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_sod: the SPH engine runs on one MPI rank (no particle decomposition yet)");
+  if (ctx.comm.size() > 1)
+    throw core::DeckError("sph_sod: the SPH engine runs on one MPI rank (no particle decomposition yet)");
   const int dim = static_cast<int>(d.integer("sod.dim"));
   auto cfg = sph::config_from_deck(d, dim);
   if (cfg.eos != sph::EosType::Adiabatic) throw core::DeckError("sph_sod needs sph.eos = \"adiabatic\"");
@@ -110,5 +115,6 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return io::run_problem(argc, argv, {"sph_sod", "Sod shock tube with the SPH engine (exact Riemann comparison)", declare, create});
+  return io::run_problem(argc, argv,
+                         {"sph_sod", "Sod shock tube with the SPH engine (exact Riemann comparison)", declare, create});
 }

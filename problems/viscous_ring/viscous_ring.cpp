@@ -34,8 +34,8 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
         "viscous_ring needs gas.viscosity = \"power_law\", gas.Sigma_index = gas.nu_index < 2 and gas.R_c = gas.R_ref");
   const double gamma = c.nu_index;
   const SelfSimilar lbp{c.Sigma0, c.R_ref, gamma, c.R_ref * c.R_ref / (3.0 * (2.0 - gamma) * (2.0 - gamma) * c.nu0)};
-  mote::logging::info(
-      mote::logging::format("viscous_ring: gamma = %g, R_1 = %g, nu_1 = %g, t_s = %.10g", gamma, c.R_ref, c.nu0, lbp.t_s));
+  mote::logging::info(mote::logging::format("viscous_ring: gamma = %g, R_1 = %g, nu_1 = %g, t_s = %.10g", gamma,
+                                            c.R_ref, c.nu0, lbp.t_s));
   sim->gas().set_boundary_values(lbp);
   sim->gas().set_surface_density([lbp](double R) { return lbp(R, 0.0); });
   return sim;

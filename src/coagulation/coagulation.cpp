@@ -63,18 +63,18 @@ void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
   auto pi = tables_.pair_i;
   auto pj = tables_.pair_j;
   const int pairs = tables_.pairs;
-  Kokkos::parallel_for("coagulation::pair_kernels", detail::TeamPolicy(count, Kokkos::AUTO),
-                       KOKKOS_LAMBDA(const detail::Member& team) {
-                         const int lc = team.league_rank(), c = first + lc;
-                         Kokkos::parallel_for(Kokkos::TeamThreadRange(team, pairs), [&](int p) {
-                           const int i = pi(p), j = pj(p);
-                           const PairRate r = kernel(c, i, j);
-                           const Real half = i == j ? 0.5 : 1.0;
-                           const Real pf = math::min(math::max(r.p_frag, Real(0)), Real(1));
-                           kc(lc, p) = half * r.K * (1.0 - pf);
-                           kf(lc, p) = half * r.K * pf;
-                         });
-                       });
+  Kokkos::parallel_for(
+      "coagulation::pair_kernels", detail::TeamPolicy(count, Kokkos::AUTO), KOKKOS_LAMBDA(const detail::Member& team) {
+        const int lc = team.league_rank(), c = first + lc;
+        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, pairs), [&](int p) {
+          const int i = pi(p), j = pj(p);
+          const PairRate r = kernel(c, i, j);
+          const Real half = i == j ? 0.5 : 1.0;
+          const Real pf = math::min(math::max(r.p_frag, Real(0)), Real(1));
+          kc(lc, p) = half * r.K * (1.0 - pf);
+          kf(lc, p) = half * r.K * pf;
+        });
+      });
   debug_fence("coagulation::pair_kernels");
 }
 
@@ -95,46 +95,55 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
     evaluate_pairs(first, count, kernel);
     const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
     const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
-    Kokkos::parallel_for("coagulation::integrate", policy, KOKKOS_LAMBDA(const detail::Member& team) {
-      const int lc = team.league_rank(), c = first + lc;
-      const auto& scratch = team.team_scratch(0);
-      const detail::Scratch y(scratch, n), nd(scratch, n), bucket(scratch, n), theta(scratch, 2 * n);
-      const Bs32Work<detail::Scratch> work{detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n),
-                                           detail::Scratch(scratch, n), detail::Scratch(scratch, n), detail::Scratch(scratch, n)};
-      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
-      team.team_barrier();
-      Real total = 0;
-      Kokkos::parallel_reduce(Kokkos::TeamThreadRange(team, n), [&](int k, Real& s) { s += math::fabs(y(k)); }, total);
-      Bs32Result r;
-      if (total > 0) {
-        Bs32Options o = base;
-        o.abs_tol = abs_factor * total;
-        o.h_init = next(c);
-        const auto rhs = [&](const detail::Member& tm, const detail::Scratch& yin, const detail::Scratch& out) {
-          rates(tm, lc, yin, out, nd, bucket, theta);
-        };
-        r = bs32_integrate(team, n, y, dt, o, work, rhs);
-        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { density(c, k) = y(k); });
-      }
-      Kokkos::single(Kokkos::PerTeam(team), [&]() {
-        if (total > 0) next(c) = r.h_next;
-        steps(c) = r.accepted;
-        rejected(c) = r.rejected;
-        failed(c) = r.ok ? 0 : 1;
-      });
-    });
+    Kokkos::parallel_for(
+        "coagulation::integrate", policy, KOKKOS_LAMBDA(const detail::Member& team) {
+          const int lc = team.league_rank(), c = first + lc;
+          const auto& scratch = team.team_scratch(0);
+          const detail::Scratch y(scratch, n), nd(scratch, n), bucket(scratch, n), theta(scratch, 2 * n);
+          const Bs32Work<detail::Scratch> work{detail::Scratch(scratch, n), detail::Scratch(scratch, n),
+                                               detail::Scratch(scratch, n), detail::Scratch(scratch, n),
+                                               detail::Scratch(scratch, n), detail::Scratch(scratch, n)};
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
+          team.team_barrier();
+          Real total = 0;
+          Kokkos::parallel_reduce(
+              Kokkos::TeamThreadRange(team, n), [&](int k, Real& s) { s += math::fabs(y(k)); }, total);
+          Bs32Result r;
+          if (total > 0) {
+            Bs32Options o = base;
+            o.abs_tol = abs_factor * total;
+            o.h_init = next(c);
+            const auto rhs = [&](const detail::Member& tm, const detail::Scratch& yin, const detail::Scratch& out) {
+              rates(tm, lc, yin, out, nd, bucket, theta);
+            };
+            r = bs32_integrate(team, n, y, dt, o, work, rhs);
+            Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { density(c, k) = y(k); });
+          }
+          Kokkos::single(Kokkos::PerTeam(team), [&]() {
+            if (total > 0) next(c) = r.h_next;
+            steps(c) = r.accepted;
+            rejected(c) = r.rejected;
+            failed(c) = r.ok ? 0 : 1;
+          });
+        });
     debug_fence("coagulation::integrate");
   }
   CallStatistics stats;
   long long acc = 0, rej = 0;
   int bad = 0;
   Real hmin = 0;
-  par_reduce("coagulation::count_substeps", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += steps(c); }, acc);
-  par_reduce("coagulation::count_rejections", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += rejected(c); }, rej);
-  par_reduce("coagulation::count_failed", 0, cells_, KOKKOS_LAMBDA(int c, int& s) { s += failed(c); }, bad);
-  par_reduce("coagulation::min_next_substep", 0, cells_, KOKKOS_LAMBDA(int c, Real& m) {
-    if (next(c) > 0) m = math::min(m, next(c));
-  }, Kokkos::Min<Real>(hmin));
+  par_reduce(
+      "coagulation::count_substeps", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += steps(c); }, acc);
+  par_reduce(
+      "coagulation::count_rejections", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += rejected(c); }, rej);
+  par_reduce(
+      "coagulation::count_failed", 0, cells_, KOKKOS_LAMBDA(int c, int& s) { s += failed(c); }, bad);
+  par_reduce(
+      "coagulation::min_next_substep", 0, cells_,
+      KOKKOS_LAMBDA(int c, Real& m) {
+        if (next(c) > 0) m = math::min(m, next(c));
+      },
+      Kokkos::Min<Real>(hmin));
   stats.substeps = acc;
   stats.rejections = rej;
   stats.failed_cells = bad;
@@ -151,15 +160,17 @@ void Coagulation::rates_with(const RealView2& density, const Kernel& kernel, con
     evaluate_pairs(first, count, kernel);
     const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
     const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
-    Kokkos::parallel_for("coagulation::rates", policy, KOKKOS_LAMBDA(const detail::Member& team) {
-      const int lc = team.league_rank(), c = first + lc;
-      const auto& scratch = team.team_scratch(0);
-      const detail::Scratch y(scratch, n), out(scratch, n), nd(scratch, n), bucket(scratch, n), theta(scratch, 2 * n);
-      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
-      team.team_barrier();
-      rates(team, lc, y, out, nd, bucket, theta);
-      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { dydt(c, k) = out(k); });
-    });
+    Kokkos::parallel_for(
+        "coagulation::rates", policy, KOKKOS_LAMBDA(const detail::Member& team) {
+          const int lc = team.league_rank(), c = first + lc;
+          const auto& scratch = team.team_scratch(0);
+          const detail::Scratch y(scratch, n), out(scratch, n), nd(scratch, n), bucket(scratch, n),
+              theta(scratch, 2 * n);
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { y(k) = density(c, k); });
+          team.team_barrier();
+          rates(team, lc, y, out, nd, bucket, theta);
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { dydt(c, k) = out(k); });
+        });
     debug_fence("coagulation::rates");
   }
 }
@@ -172,9 +183,9 @@ void Coagulation::rates(const RealView2& density, const AnyKernel& kernel, const
   std::visit([&](const auto& k) { rates_with(density, k, dydt); }, kernel);
 }
 
-#define MOTE_COAGULATION_INSTANTIATE(K)                                                          \
-  template void Coagulation::evaluate_pairs<K>(int, int, const K&);                               \
-  template CallStatistics Coagulation::integrate_with<K>(const RealView2&, Real, const K&);       \
+#define MOTE_COAGULATION_INSTANTIATE(K)                                                     \
+  template void Coagulation::evaluate_pairs<K>(int, int, const K&);                         \
+  template CallStatistics Coagulation::integrate_with<K>(const RealView2&, Real, const K&); \
   template void Coagulation::rates_with<K>(const RealView2&, const K&, const RealView2&);
 MOTE_COAGULATION_INSTANTIATE(ConstantKernel)
 MOTE_COAGULATION_INSTANTIATE(AdditiveKernel)

@@ -130,7 +130,7 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
       const int p = pair_index(i, j);
       pi(p) = i;
       pj(p) = j;
-      const double m_small = i == j ? mc[i] : mc[j];          // m_tot - m_i
+      const double m_small = i == j ? mc[i] : mc[j];  // m_tot - m_i
       const double m_tot = mc[i] + mc[j];
       // m_product - (mass the pair takes out of bin i), without cancellation:
       const double net_coag = i == j ? 0.0 : mc[j];
@@ -150,7 +150,8 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
         split(rem, rem_corr, mc, me, scheme, p, i, m_rem, net_rem, near_l, near_u, l, self_rem);
       }
       const double m_frag = m_rem > 0 ? (1.0 + chi_im) * m_small : m_tot;  // m_tot - m_rem without cancellation
-      const int l = std::min(n - 1, static_cast<int>(std::upper_bound(me.begin() + 1, me.end(), m_frag) - (me.begin() + 1)));
+      const int l =
+          std::min(n - 1, static_cast<int>(std::upper_bound(me.begin() + 1, me.end(), m_frag) - (me.begin() + 1)));
       frag.push_back({l, p, m_frag});
       self(p) = (self_coag ? 1 : 0) | (self_rem ? 2 : 0);
     }

@@ -22,16 +22,18 @@ RealView1 to_device(const std::vector<Real>& v, const char* name) {
 
 MassGrid MassGrid::from_sizes(Real a_min, Real a_max, int species, Real rho_m) {
   if (!(a_min > 0) || !(a_max > a_min) || species < 2 || !(rho_m > 0))
-    throw std::invalid_argument(logging::cat("coagulation mass grid: need 0 < a_min < a_max, species >= 2, rho_m > 0 (got a_min = ",
-                                         a_min, ", a_max = ", a_max, ", species = ", species, ", rho_m = ", rho_m, ")"));
-  return from_masses(kFourThirdsPi * rho_m * a_min * a_min * a_min, kFourThirdsPi * rho_m * a_max * a_max * a_max, species,
-                     rho_m);
+    throw std::invalid_argument(
+        logging::cat("coagulation mass grid: need 0 < a_min < a_max, species >= 2, rho_m > 0 (got a_min = ", a_min,
+                     ", a_max = ", a_max, ", species = ", species, ", rho_m = ", rho_m, ")"));
+  return from_masses(kFourThirdsPi * rho_m * a_min * a_min * a_min, kFourThirdsPi * rho_m * a_max * a_max * a_max,
+                     species, rho_m);
 }
 
 MassGrid MassGrid::from_masses(Real m_min, Real m_max, int species, Real rho_m) {
   if (!(m_min > 0) || !(m_max > m_min) || species < 2 || !(rho_m > 0))
-    throw std::invalid_argument(logging::cat("coagulation mass grid: need 0 < m_min < m_max, species >= 2, rho_m > 0 (got m_min = ",
-                                         m_min, ", m_max = ", m_max, ", species = ", species, ")"));
+    throw std::invalid_argument(
+        logging::cat("coagulation mass grid: need 0 < m_min < m_max, species >= 2, rho_m > 0 (got m_min = ", m_min,
+                     ", m_max = ", m_max, ", species = ", species, ")"));
   std::vector<Real> m(species);
   const double step = std::log(m_max / m_min) / (species - 1);
   for (int k = 0; k < species; ++k) m[k] = m_min * std::exp(step * k);
@@ -58,9 +60,10 @@ Real MassGrid::bins_per_mass_decade() const { return 1.0 / std::log10(mass_[1] /
 std::string MassGrid::resolution_warning() const {
   const double bpd = bins_per_mass_decade();
   if (bpd >= 7.0 - 1e-9) return {};
-  return logging::format("coagulation mass grid has %.2f bins per mass decade (m_{k+1}/m_k = %.3f); "
-                     "RBO24 (after Ohtsuki et al. 1990) needs >= 7 for accurate growth rates",
-                     bpd, mass_[1] / mass_[0]);
+  return logging::format(
+      "coagulation mass grid has %.2f bins per mass decade (m_{k+1}/m_k = %.3f); "
+      "RBO24 (after Ohtsuki et al. 1990) needs >= 7 for accurate growth rates",
+      bpd, mass_[1] / mass_[0]);
 }
 
 }  // namespace mote::coagulation

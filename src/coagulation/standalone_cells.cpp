@@ -11,11 +11,16 @@ namespace mote::coagulation {
 
 StandaloneCells::StandaloneCells(const MassGrid& grid, const CoagulationSettings& settings, int cells, AnyKernel kernel,
                                  const std::vector<double>& initial, double call_interval, io::FieldUnit density_unit)
-    : grid_(grid), solver_(grid_, settings, cells), kernel_(std::move(kernel)), cells_(cells),
-      call_interval_(call_interval), density_unit_(std::move(density_unit)) {
+    : grid_(grid),
+      solver_(grid_, settings, cells),
+      kernel_(std::move(kernel)),
+      cells_(cells),
+      call_interval_(call_interval),
+      density_unit_(std::move(density_unit)) {
   if (const auto w = grid_.resolution_warning(); !w.empty()) logging::warn(w);
   const int n = grid_.size();
-  if (static_cast<int>(initial.size()) != n) throw std::logic_error("StandaloneCells: initial distribution size differs from the grid");
+  if (static_cast<int>(initial.size()) != n)
+    throw std::logic_error("StandaloneCells: initial distribution size differs from the grid");
   density_ = RealView2("coagulation::density", cells_, n);
   auto h = Kokkos::create_mirror_view(density_);
   for (int c = 0; c < cells_; ++c)
@@ -71,7 +76,9 @@ void StandaloneCells::load_state(const io::H5File& file) {
 
 std::vector<io::Diagnostic> StandaloneCells::diagnostics() const {
   const double m = total_density();
-  return {{"total_density", m}, {"mass_error", (m - total0_) / total0_}, {"substeps", double(substeps_)},
+  return {{"total_density", m},
+          {"mass_error", (m - total0_) / total0_},
+          {"substeps", double(substeps_)},
           {"rejections", double(rejections_)}};
 }
 
@@ -95,14 +102,15 @@ std::vector<double> StandaloneCells::host_density() const {
 double StandaloneCells::total_density() const {
   auto rho = density_;
   double m = 0;
-  par_reduce("coagulation::total_density", 0, cells_, 0, grid_.size(),
-             KOKKOS_LAMBDA(int c, int k, double& s) { s += rho(c, k); }, m);
+  par_reduce(
+      "coagulation::total_density", 0, cells_, 0, grid_.size(),
+      KOKKOS_LAMBDA(int c, int k, double& s) { s += rho(c, k); }, m);
   return m / cells_;
 }
 
 std::string StandaloneCells::summary() const {
   return logging::format("mass error = %.3e, substeps = %lld, rejections = %lld", (total_density() - total0_) / total0_,
-                     substeps_, rejections_);
+                         substeps_, rejections_);
 }
 
 }  // namespace mote::coagulation

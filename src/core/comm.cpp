@@ -58,7 +58,8 @@ void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<doubl
   sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
 }
 
-void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int tag) const {
+void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source,
+                    int tag) const {
   MPI_Sendrecv(send, send_count, MPI_DOUBLE, dest < 0 ? MPI_PROC_NULL : dest, tag, recv, recv_count, MPI_DOUBLE,
                source < 0 ? MPI_PROC_NULL : source, tag, comm_, MPI_STATUS_IGNORE);
 }

@@ -1,13 +1,14 @@
 // Input-deck parsing and validation (see include/mote/core/deck.hpp).
 #include "mote/core/deck.hpp"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <optional>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace mote::core {
 
@@ -52,9 +53,12 @@ std::optional<Value> convert(const toml::node& node, ValueType type) {
       if (const auto* arr = node.as_array()) {
         std::vector<double> out;
         for (const auto& el : *arr) {
-          if (el.is_floating_point()) out.push_back(el.as_floating_point()->get());
-          else if (el.is_integer()) out.push_back(static_cast<double>(el.as_integer()->get()));
-          else return std::nullopt;
+          if (el.is_floating_point())
+            out.push_back(el.as_floating_point()->get());
+          else if (el.is_integer())
+            out.push_back(static_cast<double>(el.as_integer()->get()));
+          else
+            return std::nullopt;
         }
         return Value(out);
       }
@@ -80,7 +84,8 @@ class Validator {
       const std::string where = where_of(file_, tkey.source());
       const auto* tbl = tnode.as_table();
       if (!tbl) {
-        errors_.push_back(where + ": key '" + tname + "' is outside any table; every key belongs to a table such as [run]");
+        errors_.push_back(where + ": key '" + tname +
+                          "' is outside any table; every key belongs to a table such as [run]");
         continue;
       }
       if (!schema_.find_table(tname)) {
@@ -152,12 +157,13 @@ class Validator {
     }
     auto value = convert(node, spec->type());
     if (!value) {
-      errors_.push_back(where + ": key '" + dotted + "': expected " + expected_text(*spec) + ", got " + describe_node(node));
+      errors_.push_back(where + ": key '" + dotted + "': expected " + expected_text(*spec) + ", got " +
+                        describe_node(node));
       return;
     }
     if (auto violation = spec->range_violation(*value); !violation.empty()) {
-      errors_.push_back(where + ": key '" + dotted + "': value " + value_to_toml(*value) + " is out of range; expected " +
-                        expected_text(*spec));
+      errors_.push_back(where + ": key '" + dotted + "': value " + value_to_toml(*value) +
+                        " is out of range; expected " + expected_text(*spec));
       return;
     }
     values_[dotted] = Located{*value, where};
@@ -222,7 +228,8 @@ bool Deck::has_table(const std::string& table) const {
 
 const Value& Deck::value(const std::string& dotted, ValueType type) const {
   const auto it = values_.find(dotted);
-  if (it == values_.end()) throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
+  if (it == values_.end())
+    throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
   const KeySpec* spec = nullptr;
   const auto dot = dotted.find('.');
   spec = schema_->find_key(dotted.substr(0, dot), dotted.substr(dot + 1));
@@ -232,7 +239,9 @@ const Value& Deck::value(const std::string& dotted, ValueType type) const {
 }
 
 bool Deck::boolean(const std::string& dotted) const { return std::get<bool>(value(dotted, ValueType::Boolean)); }
-long long Deck::integer(const std::string& dotted) const { return std::get<long long>(value(dotted, ValueType::Integer)); }
+long long Deck::integer(const std::string& dotted) const {
+  return std::get<long long>(value(dotted, ValueType::Integer));
+}
 double Deck::real(const std::string& dotted) const { return std::get<double>(value(dotted, ValueType::Real)); }
 const std::string& Deck::string(const std::string& dotted) const {
   return std::get<std::string>(value(dotted, ValueType::String));

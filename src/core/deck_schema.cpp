@@ -12,11 +12,16 @@ namespace mote::core {
 
 const char* type_name(ValueType type) {
   switch (type) {
-    case ValueType::Boolean: return "boolean";
-    case ValueType::Integer: return "integer";
-    case ValueType::Real: return "real";
-    case ValueType::String: return "string";
-    case ValueType::RealArray: return "array of reals";
+    case ValueType::Boolean:
+      return "boolean";
+    case ValueType::Integer:
+      return "integer";
+    case ValueType::Real:
+      return "real";
+    case ValueType::String:
+      return "string";
+    case ValueType::RealArray:
+      return "array of reals";
   }
   return "?";
 }
@@ -52,22 +57,49 @@ std::string value_to_toml(const Value& value) {
 KeySpec::KeySpec(std::string table, std::string key, ValueType type)
     : table_(std::move(table)), key_(std::move(key)), type_(type) {}
 
-KeySpec& KeySpec::doc(std::string text) { doc_ = std::move(text); return *this; }
-KeySpec& KeySpec::unit(std::string text) { unit_ = std::move(text); return *this; }
+KeySpec& KeySpec::doc(std::string text) {
+  doc_ = std::move(text);
+  return *this;
+}
+KeySpec& KeySpec::unit(std::string text) {
+  unit_ = std::move(text);
+  return *this;
+}
 
 KeySpec& KeySpec::default_value(Value value) {
   // Accept integer literals for real keys so that declarations read naturally.
-  if (type_ == ValueType::Real && std::holds_alternative<long long>(value)) value = static_cast<double>(std::get<long long>(value));
-  if (type_ == ValueType::Integer && std::holds_alternative<bool>(value)) throw std::logic_error(dotted() + ": bool default for an integer key");
+  if (type_ == ValueType::Real && std::holds_alternative<long long>(value))
+    value = static_cast<double>(std::get<long long>(value));
+  if (type_ == ValueType::Integer && std::holds_alternative<bool>(value))
+    throw std::logic_error(dotted() + ": bool default for an integer key");
   default_ = std::move(value);
   return *this;
 }
 
-KeySpec& KeySpec::min(double bound) { lower_ = bound; lower_strict_ = false; return *this; }
-KeySpec& KeySpec::greater_than(double bound) { lower_ = bound; lower_strict_ = true; return *this; }
-KeySpec& KeySpec::max(double bound) { upper_ = bound; upper_strict_ = false; return *this; }
-KeySpec& KeySpec::less_than(double bound) { upper_ = bound; upper_strict_ = true; return *this; }
-KeySpec& KeySpec::one_of(std::vector<std::string> choices) { choices_ = std::move(choices); return *this; }
+KeySpec& KeySpec::min(double bound) {
+  lower_ = bound;
+  lower_strict_ = false;
+  return *this;
+}
+KeySpec& KeySpec::greater_than(double bound) {
+  lower_ = bound;
+  lower_strict_ = true;
+  return *this;
+}
+KeySpec& KeySpec::max(double bound) {
+  upper_ = bound;
+  upper_strict_ = false;
+  return *this;
+}
+KeySpec& KeySpec::less_than(double bound) {
+  upper_ = bound;
+  upper_strict_ = true;
+  return *this;
+}
+KeySpec& KeySpec::one_of(std::vector<std::string> choices) {
+  choices_ = std::move(choices);
+  return *this;
+}
 
 std::string KeySpec::range_text() const {
   std::vector<std::string> parts;
@@ -92,8 +124,7 @@ std::string KeySpec::range_violation(const Value& value) const {
   bool bad = false;
   if (const auto* d = std::get_if<double>(&value)) bad = check_number(*d);
   if (const auto* i = std::get_if<long long>(&value)) bad = check_number(static_cast<double>(*i));
-  if (const auto* a = std::get_if<std::vector<double>>(&value))
-    bad = std::any_of(a->begin(), a->end(), check_number);
+  if (const auto* a = std::get_if<std::vector<double>>(&value)) bad = std::any_of(a->begin(), a->end(), check_number);
   if (const auto* s = std::get_if<std::string>(&value))
     bad = !choices_.empty() && std::find(choices_.begin(), choices_.end(), *s) == choices_.end();
   return bad ? range_text() : std::string();
@@ -108,7 +139,8 @@ TableSpec& DeckSchema::table(const std::string& name, const std::string& doc, bo
 
 KeySpec& DeckSchema::add(const std::string& dotted, ValueType type) {
   const auto dot = dotted.find('.');
-  if (dot == std::string::npos || dot == 0 || dot + 1 == dotted.size() || dotted.find('.', dot + 1) != std::string::npos)
+  if (dot == std::string::npos || dot == 0 || dot + 1 == dotted.size() ||
+      dotted.find('.', dot + 1) != std::string::npos)
     throw std::logic_error("deck key '" + dotted + "' must be written table.key");
   const std::string table = dotted.substr(0, dot), key = dotted.substr(dot + 1);
   if (!find_table(table)) throw std::logic_error("deck key '" + dotted + "' declared before its table");
@@ -153,7 +185,10 @@ std::optional<std::string> closest(const std::string& word, const std::vector<st
   int best_d = 0;
   for (const auto& c : candidates) {
     const int d = edit_distance(word, c);
-    if (!best || d < best_d) { best = c; best_d = d; }
+    if (!best || d < best_d) {
+      best = c;
+      best_d = d;
+    }
   }
   const int allowed = std::max(2, static_cast<int>(word.size()) / 3);
   if (best && best_d <= allowed) return best;
@@ -192,7 +227,8 @@ std::string DeckSchema::help_text() const {
 std::string DeckSchema::markdown() const {
   std::ostringstream os;
   for (const auto& t : tables_) {
-    os << "### `[" << t.name << "]`" << (t.optional ? " (optional; present = enabled)" : "") << "\n\n" << t.doc << "\n\n";
+    os << "### `[" << t.name << "]`" << (t.optional ? " (optional; present = enabled)" : "") << "\n\n"
+       << t.doc << "\n\n";
     os << "| key | type | default | unit | allowed | description |\n|---|---|---|---|---|---|\n";
     for (const auto& k : keys_) {
       if (k.table() != t.name) continue;

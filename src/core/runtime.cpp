@@ -30,8 +30,8 @@ Runtime::~Runtime() {
 std::string Runtime::describe() const {
   const int v = KOKKOS_VERSION;
   return logging::cat("Kokkos ", v / 10000, ".", (v / 100) % 100, ".", v % 100, ", execution space ",
-                  Kokkos::DefaultExecutionSpace::name(), ", concurrency ", Kokkos::DefaultExecutionSpace().concurrency(),
-                  ", MPI ranks ", comm_.size());
+                      Kokkos::DefaultExecutionSpace::name(), ", concurrency ",
+                      Kokkos::DefaultExecutionSpace().concurrency(), ", MPI ranks ", comm_.size());
 }
 
 std::string Runtime::backend() { return Kokkos::DefaultExecutionSpace::name(); }

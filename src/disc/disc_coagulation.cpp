@@ -25,8 +25,8 @@ coagulation::MassGrid dust_mass_grid(const DustSettings& dust, const units::Unit
     if (!(std::fabs(grid.grain_size(s) / a - 1.0) <= 1e-3))
       throw core::DeckError(
           logging::cat("coagulation in the disc needs logarithmically spaced dust.sizes (to 0.1 %): species ", s,
-                   " has a = ", a, " cm, the logarithmic grid from ", grid.grain_size(0), " to ",
-                   grid.grain_size(ns - 1), " cm has ", grid.grain_size(s), " cm"));
+                       " has a = ", a, " cm, the logarithmic grid from ", grid.grain_size(0), " to ",
+                       grid.grain_size(ns - 1), " cm has ", grid.grain_size(s), " cm"));
   }
   if (!grid.resolution_warning().empty()) logging::warn(grid.resolution_warning());
   return grid;
@@ -92,7 +92,7 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
   const auto stats = solver_.integrate(density_, elapsed * ut, coagulation::make_kernel(settings_, mass_grid_, cells_));
   if (stats.failed_cells > 0)
     throw std::runtime_error(logging::cat("disc coagulation failed in ", stats.failed_cells,
-                                      " cells (coagulation.max_substeps reached or vanishing sub-step)"));
+                                          " cells (coagulation.max_substeps reached or vanishing sub-step)"));
   par_for(
       "disc::coagulation_store", 0, cells, 0, ns, KOKKOS_LAMBDA(int c, int s) {
         const int i = ib + c / nt, j = jb + c % nt;

@@ -19,7 +19,10 @@ void DriverSettings::declare(core::DeckSchema& s) {
       .doc(
           "Evolve the gas surface density (eq. 26, sub-cycled) and rebuild the gas structure (eq. 27-37) on the gas "
           "cadence; false: the initial gas is kept.");
-  s.integer("driver.gas_every").default_value(1LL).min(1).doc("Gas update after every N-th dust step (RBO24 default 1).");
+  s.integer("driver.gas_every")
+      .default_value(1LL)
+      .min(1)
+      .doc("Gas update after every N-th dust step (RBO24 default 1).");
   s.real("driver.gas_interval")
       .default_value(0.0)
       .min(0.0)
@@ -111,7 +114,8 @@ void DiscDriver::save_state(io::H5File& file, const std::string& group) const {
 void DiscDriver::load_state(const io::H5File& file, const std::string& group) {
   const auto n = file.read_attribute_int(group, "sub_solvers");
   if (n != static_cast<std::int64_t>(solvers_.size()))
-    throw core::DeckError(logging::cat("checkpoint has ", n, " driver sub-solvers, this run registers ", solvers_.size()));
+    throw core::DeckError(
+        logging::cat("checkpoint has ", n, " driver sub-solvers, this run registers ", solvers_.size()));
   for (size_t k = 0; k < solvers_.size(); ++k) {
     const std::string p = solvers_[k].name + "_";
     clocks_[k].last_time = file.read_attribute_real(group, p + "last_time");

@@ -163,7 +163,7 @@ std::optional<io::NonFinite> DiscSimulation::find_non_finite() const {
   if (first != INT_MAX) {
     const int i = first / nt, j = first % nt;
     return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
-                                               grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
+                                                   grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
   }
   return gas_->find_non_finite();
 }

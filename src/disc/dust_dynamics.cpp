@@ -28,12 +28,13 @@ void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, 
 RealView2 slope_geometry(const std::string& name, const RealView1& xc, const RealView1& xe) {
   const int n = static_cast<int>(xc.extent(0));
   RealView2 g(name, n, 4);
-  par_for(name, 1, n - 1, KOKKOS_LAMBDA(int i) {
-    g(i, 0) = 1.0 / (xc(i + 1) - xc(i));
-    g(i, 1) = 1.0 / (xc(i) - xc(i - 1));
-    g(i, 2) = (xc(i + 1) - xc(i)) / (xe(i + 1) - xc(i));
-    g(i, 3) = (xc(i) - xc(i - 1)) / (xc(i) - xe(i));
-  });
+  par_for(
+      name, 1, n - 1, KOKKOS_LAMBDA(int i) {
+        g(i, 0) = 1.0 / (xc(i + 1) - xc(i));
+        g(i, 1) = 1.0 / (xc(i) - xc(i - 1));
+        g(i, 2) = (xc(i + 1) - xc(i)) / (xe(i + 1) - xc(i));
+        g(i, 3) = (xc(i) - xc(i - 1)) / (xc(i) - xe(i));
+      });
   return g;
 }
 
@@ -43,7 +44,9 @@ void DustSettings::declare(core::DeckSchema& s) {
   s.table("dust", "Pressureless dust species on the grid (RBO24 sec. 3).");
   s.real_array("dust.sizes").greater_than(0.0).unit("cm").doc("Grain radius of each species.");
   s.real("dust.rho_grain").default_value(1.6).greater_than(0.0).unit("g cm^-3").doc("Grain material density.");
-  s.real_array("dust.schmidt").default_value(std::vector<double>{}).greater_than(0.0)
+  s.real_array("dust.schmidt")
+      .default_value(std::vector<double>{})
+      .greater_than(0.0)
       .doc("Schmidt number per species (eq. 15); empty = 1 for every species.");
   s.real("dust.floor").default_value(1e-40).greater_than(0.0).unit("code density").doc("Density floor.");
   s.real("dust.cfl_advection").default_value(0.4).greater_than(0.0).max(1.0).doc("C_adv of eq. 18.");
@@ -51,8 +54,11 @@ void DustSettings::declare(core::DeckSchema& s) {
   s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
   s.boolean("dust.drag").default_value(true).doc("Implicit gas drag (eq. 13-14).");
   s.boolean("dust.gravity").default_value(true).doc("Stellar gravity and curvature sources (eq. 6).");
-  s.boolean("dust.radial_fluxes").default_value(true).doc(
-      "Fluxes through the radial faces; false: every column evolves alone (vertical settling tests, RBO24 sec. 3.6).");
+  s.boolean("dust.radial_fluxes")
+      .default_value(true)
+      .doc(
+          "Fluxes through the radial faces; false: every column evolves alone (vertical settling tests, RBO24 sec. "
+          "3.6).");
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, const StellarGravity& star) {
@@ -62,7 +68,8 @@ DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSyste
   st.schmidt = d.real_array("dust.schmidt");
   if (st.schmidt.empty()) st.schmidt.assign(st.sizes.size(), 1.0);
   if (st.schmidt.size() != st.sizes.size())
-    throw core::DeckError(logging::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
+    throw core::DeckError(
+        logging::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
   st.rho_grain = d.real("dust.rho_grain") / u.density();
   st.floor = d.real("dust.floor");
   st.cfl_advection = d.real("dust.cfl_advection");
@@ -109,10 +116,11 @@ void DustDynamics::set_gas(const GasFields& gas) {
   gas_ = gas;
   auto D = gas_D_, inv_rho = inv_rho_g_;
   auto rho = gas.rho, nu = gas.nu;
-  par_for("disc::dust_diffusivity", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-    D(i, j) = rho(i, j) * nu(i, j);
-    inv_rho(i, j) = 1.0 / rho(i, j);
-  });
+  par_for(
+      "disc::dust_diffusivity", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        D(i, j) = rho(i, j) * nu(i, j);
+        inv_rho(i, j) = 1.0 / rho(i, j);
+      });
   mesh::update_diffusion_coefficients(grid_, gas_D_, diffusion_);
 }
 
@@ -120,13 +128,14 @@ void DustDynamics::initialise_from_primitives() {
   fill_ghosts(W);
   auto Q_ = Q, W_ = W;
   auto Rc = grid_.Rc;
-  for_cells("disc::dust_prim_to_cons", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
-    const Real rho = W_(i, j, s, kRho);
-    Q_(i, j, s, kRho) = rho;
-    Q_(i, j, s, kMomR) = rho * W_(i, j, s, kVR);
-    Q_(i, j, s, kAngMom) = rho * W_(i, j, s, kVphi) * Rc(i);
-    Q_(i, j, s, kMomZ) = rho * W_(i, j, s, kVZ);
-  });
+  for_cells(
+      "disc::dust_prim_to_cons", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+        const Real rho = W_(i, j, s, kRho);
+        Q_(i, j, s, kRho) = rho;
+        Q_(i, j, s, kMomR) = rho * W_(i, j, s, kVR);
+        Q_(i, j, s, kAngMom) = rho * W_(i, j, s, kVphi) * Rc(i);
+        Q_(i, j, s, kMomZ) = rho * W_(i, j, s, kVZ);
+      });
 }
 
 void DustDynamics::fill_ghosts(const View4& w) {
@@ -138,24 +147,26 @@ void DustDynamics::fill_ghosts(const View4& w) {
   if (grid_.has_inner_boundary() || grid_.has_outer_boundary()) {
     const bool do_in = grid_.has_inner_boundary(), do_out = grid_.has_outer_boundary();
     const bool zero_in = b.inner == mesh::BoundaryKind::Zero, zero_out = b.outer == mesh::BoundaryKind::Zero;
-    par_for("disc::dust_bc_radial", 0, ng, ng, ng + nt, 0, ns, KOKKOS_LAMBDA(int g, int j, int s) {
-      for (int k = 0; k < kDustVars; ++k) {
-        if (do_in) w(g, j, s, k) = w(ng, j, s, k);
-        if (do_out) w(ng + nr + g, j, s, k) = w(ng + nr - 1, j, s, k);
-      }
-      if (do_in && zero_in) w(g, j, s, kRho) = floor;
-      if (do_out && zero_out) w(ng + nr + g, j, s, kRho) = floor;
-    });
+    par_for(
+        "disc::dust_bc_radial", 0, ng, ng, ng + nt, 0, ns, KOKKOS_LAMBDA(int g, int j, int s) {
+          for (int k = 0; k < kDustVars; ++k) {
+            if (do_in) w(g, j, s, k) = w(ng, j, s, k);
+            if (do_out) w(ng + nr + g, j, s, k) = w(ng + nr - 1, j, s, k);
+          }
+          if (do_in && zero_in) w(g, j, s, kRho) = floor;
+          if (do_out && zero_out) w(ng + nr + g, j, s, kRho) = floor;
+        });
   }
   const bool zero_lo = b.lower == mesh::BoundaryKind::Zero, zero_hi = b.upper == mesh::BoundaryKind::Zero;
-  par_for("disc::dust_bc_theta", 0, NI, 0, ng, 0, ns, KOKKOS_LAMBDA(int i, int g, int s) {
-    for (int k = 0; k < kDustVars; ++k) {
-      w(i, g, s, k) = w(i, ng, s, k);
-      w(i, ng + nt + g, s, k) = w(i, ng + nt - 1, s, k);
-    }
-    if (zero_lo) w(i, g, s, kRho) = floor;
-    if (zero_hi) w(i, ng + nt + g, s, kRho) = floor;
-  });
+  par_for(
+      "disc::dust_bc_theta", 0, NI, 0, ng, 0, ns, KOKKOS_LAMBDA(int i, int g, int s) {
+        for (int k = 0; k < kDustVars; ++k) {
+          w(i, g, s, k) = w(i, ng, s, k);
+          w(i, ng + nt + g, s, k) = w(i, ng + nt - 1, s, k);
+        }
+        if (zero_lo) w(i, g, s, kRho) = floor;
+        if (zero_hi) w(i, ng + nt + g, s, kRho) = floor;
+      });
 }
 
 void DustDynamics::compute_slopes(const View4& w, bool radial) {
@@ -163,16 +174,20 @@ void DustDynamics::compute_slopes(const View4& w, bool radial) {
   auto sl = slope_;
   if (radial) {
     auto g = slope_R_;
-    for_cells("disc::dust_slopes_radial", ng - 1, ng + nr + 1, ng, ng + nt, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
-      for (int k = 0; k < kDustVars; ++k)
-        sl(i, j, s, k) = mignone_slope(w(i - 1, j, s, k), w(i, j, s, k), w(i + 1, j, s, k), g(i, 0), g(i, 1), g(i, 2), g(i, 3));
-    });
+    for_cells(
+        "disc::dust_slopes_radial", ng - 1, ng + nr + 1, ng, ng + nt, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+          for (int k = 0; k < kDustVars; ++k)
+            sl(i, j, s, k) =
+                mignone_slope(w(i - 1, j, s, k), w(i, j, s, k), w(i + 1, j, s, k), g(i, 0), g(i, 1), g(i, 2), g(i, 3));
+        });
   } else {
     auto g = slope_Z_;
-    for_cells("disc::dust_slopes_theta", ng, ng + nr, ng - 1, ng + nt + 1, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
-      for (int k = 0; k < kDustVars; ++k)
-        sl(i, j, s, k) = mignone_slope(w(i, j - 1, s, k), w(i, j, s, k), w(i, j + 1, s, k), g(j, 0), g(j, 1), g(j, 2), g(j, 3));
-    });
+    for_cells(
+        "disc::dust_slopes_theta", ng, ng + nr, ng - 1, ng + nt + 1, ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+          for (int k = 0; k < kDustVars; ++k)
+            sl(i, j, s, k) =
+                mignone_slope(w(i, j - 1, s, k), w(i, j, s, k), w(i, j + 1, s, k), g(j, 0), g(j, 1), g(j, 2), g(j, 3));
+        });
   }
 }
 
@@ -194,88 +209,90 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
 
   // Radial faces at Re(i), i in [ng, ng + nr]; cells L = i-1, R = i.
   if (second_order) compute_slopes(w, true);
-  for_cells("disc::dust_flux_radial", ng, ng + nr + 1, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
-    Real ql[kDustVars], qr[kDustVars];
-    for (int k = 0; k < kDustVars; ++k) {
-      ql[k] = w(i - 1, j, s, k);
-      qr[k] = w(i, j, s, k);
-      if (second_order) {
-        ql[k] += slope(i - 1, j, s, k) * (Re(i) - Rc(i - 1));
-        qr[k] += slope(i, j, s, k) * (Re(i) - Rc(i));
-      }
-    }
-    Real f[kDustVars] = {0, 0, 0, 0};
-    const bool closed = !radial || (i == ng && closed_in) || (i == ng + nr && closed_out);
-    if (!closed) {
-      const Real vl = ql[kVR], vr = qr[kVR];  // normal = R_hat
-      const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
-      const Real R = Re(i);
-      f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
-      f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
-      f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
-      f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
-      for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
-      if (diffuse) {
-        const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
-        const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
-        const Real* up = fd > 0 ? ql : qr;
-        f[kRho] += fd;
-        f[kMomR] += fd * up[kVR];
-        f[kAngMom] += fd * up[kVphi] * R;
-        f[kMomZ] += fd * up[kVZ];
-      }
-    }
-    for (int k = 0; k < kDustVars; ++k) FR(i, j, s, k) = f[k];
-  });
+  for_cells(
+      "disc::dust_flux_radial", ng, ng + nr + 1, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+        Real ql[kDustVars], qr[kDustVars];
+        for (int k = 0; k < kDustVars; ++k) {
+          ql[k] = w(i - 1, j, s, k);
+          qr[k] = w(i, j, s, k);
+          if (second_order) {
+            ql[k] += slope(i - 1, j, s, k) * (Re(i) - Rc(i - 1));
+            qr[k] += slope(i, j, s, k) * (Re(i) - Rc(i));
+          }
+        }
+        Real f[kDustVars] = {0, 0, 0, 0};
+        const bool closed = !radial || (i == ng && closed_in) || (i == ng + nr && closed_out);
+        if (!closed) {
+          const Real vl = ql[kVR], vr = qr[kVR];  // normal = R_hat
+          const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
+          const Real R = Re(i);
+          f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
+          f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
+          f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
+          f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
+          for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
+          if (diffuse) {
+            const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
+            const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
+            const Real* up = fd > 0 ? ql : qr;
+            f[kRho] += fd;
+            f[kMomR] += fd * up[kVR];
+            f[kAngMom] += fd * up[kVphi] * R;
+            f[kMomZ] += fd * up[kVZ];
+          }
+        }
+        for (int k = 0; k < kDustVars; ++k) FR(i, j, s, k) = f[k];
+      });
 
   // Theta faces at te(j), j in [ng, ng + nt]; cells L = j-1 (below), R = j; coordinate tan(theta).
   if (second_order) compute_slopes(w, false);
-  for_cells("disc::dust_flux_theta", ng, ng + nr, ng, ng + nt + 1, ns, KOKKOS_LAMBDA(int i, int j, int s) {
-    Real ql[kDustVars], qr[kDustVars];
-    for (int k = 0; k < kDustVars; ++k) {
-      ql[k] = w(i, j - 1, s, k);
-      qr[k] = w(i, j, s, k);
-      if (second_order) {
-        ql[k] += slope(i, j - 1, s, k) * (tan_te(j) - tan_tc(j - 1));
-        qr[k] += slope(i, j, s, k) * (tan_te(j) - tan_tc(j));
-      }
-    }
-    Real f[kDustVars] = {0, 0, 0, 0};
-    const bool closed = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
-    if (!closed) {
-      // Without radial fluxes the radial velocity is not transported through
-      // the (tilted) theta faces either: only v_Z moves mass along a column.
-      const Real sn = radial ? sin_te(j) : Real(0), cn = cos_te(j);
-      const Real vl = -ql[kVR] * sn + ql[kVZ] * cn, vr = -qr[kVR] * sn + qr[kVZ] * cn;
-      const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
-      const Real R = Rc(i);
-      f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
-      f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
-      f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
-      f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
-      for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
-      if (diffuse) {
-        const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
-        Real fd;
-        if (radial) {
-          fd = coef.theta_flux(u, i, j) / sc(s);
-        } else {
-          // Independent columns: two-point flux -D du/dZ along the column (harmonic
-          // face D, as the Wu weights), through the horizontal projection of the face.
-          const Real Za = R * tan_tc(j - 1), Zl = R * tan_tc(j), Zf = R * tan_te(j);
-          const Real Da = gas_D(i, j - 1), Dl = gas_D(i, j);
-          const Real k_face = Da * Dl / (Da * (Zl - Zf) + Dl * (Zf - Za));
-          fd = -k_face * (u(i, j) - u(i, j - 1)) * AZ(i, j) * cn / sc(s);
+  for_cells(
+      "disc::dust_flux_theta", ng, ng + nr, ng, ng + nt + 1, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+        Real ql[kDustVars], qr[kDustVars];
+        for (int k = 0; k < kDustVars; ++k) {
+          ql[k] = w(i, j - 1, s, k);
+          qr[k] = w(i, j, s, k);
+          if (second_order) {
+            ql[k] += slope(i, j - 1, s, k) * (tan_te(j) - tan_tc(j - 1));
+            qr[k] += slope(i, j, s, k) * (tan_te(j) - tan_tc(j));
+          }
         }
-        const Real* up = fd > 0 ? ql : qr;
-        f[kRho] += fd;
-        f[kMomR] += fd * up[kVR];
-        f[kAngMom] += fd * up[kVphi] * R;
-        f[kMomZ] += fd * up[kVZ];
-      }
-    }
-    for (int k = 0; k < kDustVars; ++k) FZ(i, j, s, k) = f[k];
-  });
+        Real f[kDustVars] = {0, 0, 0, 0};
+        const bool closed = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
+        if (!closed) {
+          // Without radial fluxes the radial velocity is not transported through
+          // the (tilted) theta faces either: only v_Z moves mass along a column.
+          const Real sn = radial ? sin_te(j) : Real(0), cn = cos_te(j);
+          const Real vl = -ql[kVR] * sn + ql[kVZ] * cn, vr = -qr[kVR] * sn + qr[kVZ] * cn;
+          const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
+          const Real R = Rc(i);
+          f[kRho] = upwind_flux(side, ql[kRho], vl, qr[kRho], vr);
+          f[kMomR] = upwind_flux(side, ql[kRho] * ql[kVR], vl, qr[kRho] * qr[kVR], vr);
+          f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
+          f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
+          for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
+          if (diffuse) {
+            const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
+            Real fd;
+            if (radial) {
+              fd = coef.theta_flux(u, i, j) / sc(s);
+            } else {
+              // Independent columns: two-point flux -D du/dZ along the column (harmonic
+              // face D, as the Wu weights), through the horizontal projection of the face.
+              const Real Za = R * tan_tc(j - 1), Zl = R * tan_tc(j), Zf = R * tan_te(j);
+              const Real Da = gas_D(i, j - 1), Dl = gas_D(i, j);
+              const Real k_face = Da * Dl / (Da * (Zl - Zf) + Dl * (Zf - Za));
+              fd = -k_face * (u(i, j) - u(i, j - 1)) * AZ(i, j) * cn / sc(s);
+            }
+            const Real* up = fd > 0 ? ql : qr;
+            f[kRho] += fd;
+            f[kMomR] += fd * up[kVR];
+            f[kAngMom] += fd * up[kVphi] * R;
+            f[kMomZ] += fd * up[kVZ];
+          }
+        }
+        for (int k = 0; k < kDustVars; ++k) FZ(i, j, s, k) = f[k];
+      });
 }
 
 void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const View4& w_out, bool update_q) {
@@ -289,61 +306,62 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
   const StellarGravity star = settings_.star;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
-  for_cells("disc::dust_stage", ng, ng + nr, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
-    // Flux divergence (eq. 8-9) from Q^n.
-    Real q[kDustVars];
-    const Real inv_v = dt / V(i, j);
-    for (int k = 0; k < kDustVars; ++k)
-      q[k] = Q_(i, j, s, k) - inv_v * (FR(i + 1, j, s, k) - FR(i, j, s, k) + FZ(i, j + 1, s, k) - FZ(i, j, s, k));
-    // Explicit sources (eq. 6) evaluated with the source-stage primitives.
-    const Real R = Rc(i), Z = Zc(i, j);
-    const Real rs = w_source(i, j, s, kRho);
-    Real aR = 0, aZ = 0;
-    if (gravity) star.acceleration(R, Z, aR, aZ);
-    if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
-    // Conserved -> primitive (steps iii, vii). The transported specific momenta
-    // are kept within the range of the 3 x 3 neighbourhood at the source stage:
-    // transport (advection and eq. 16 diffusion) only averages velocities, and
-    // this bound stops round-off in near-empty cells from creating huge
-    // velocities there (which would collapse the time-step).
-    const Real rho = math::max(q[kRho], floor);
-    Real vR, vphi, vZ;
-    if (q[kRho] > floor) {
-      Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-      for (int a = i - 1; a <= i + 1; ++a)
-        for (int c = j - 1; c <= j + 1; ++c) {
-          const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};
-          for (int k = 0; k < 3; ++k) {
-            lo[k] = math::min(lo[k], v3[k]);
-            hi[k] = math::max(hi[k], v3[k]);
-          }
+  for_cells(
+      "disc::dust_stage", ng, ng + nr, ng, ng + nt, ns, KOKKOS_LAMBDA(int i, int j, int s) {
+        // Flux divergence (eq. 8-9) from Q^n.
+        Real q[kDustVars];
+        const Real inv_v = dt / V(i, j);
+        for (int k = 0; k < kDustVars; ++k)
+          q[k] = Q_(i, j, s, k) - inv_v * (FR(i + 1, j, s, k) - FR(i, j, s, k) + FZ(i, j + 1, s, k) - FZ(i, j, s, k));
+        // Explicit sources (eq. 6) evaluated with the source-stage primitives.
+        const Real R = Rc(i), Z = Zc(i, j);
+        const Real rs = w_source(i, j, s, kRho);
+        Real aR = 0, aZ = 0;
+        if (gravity) star.acceleration(R, Z, aR, aZ);
+        if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
+        // Conserved -> primitive (steps iii, vii). The transported specific momenta
+        // are kept within the range of the 3 x 3 neighbourhood at the source stage:
+        // transport (advection and eq. 16 diffusion) only averages velocities, and
+        // this bound stops round-off in near-empty cells from creating huge
+        // velocities there (which would collapse the time-step).
+        const Real rho = math::max(q[kRho], floor);
+        Real vR, vphi, vZ;
+        if (q[kRho] > floor) {
+          Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+          for (int a = i - 1; a <= i + 1; ++a)
+            for (int c = j - 1; c <= j + 1; ++c) {
+              const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};
+              for (int k = 0; k < 3; ++k) {
+                lo[k] = math::min(lo[k], v3[k]);
+                hi[k] = math::max(hi[k], v3[k]);
+              }
+            }
+          const Real inv = 1.0 / q[kRho];
+          vR = math::min(math::max(q[kMomR] * inv, lo[0]), hi[0]) + dt * aR * rs * inv;
+          vphi = math::min(math::max(q[kAngMom] * inv, lo[1]), hi[1]) / R;
+          vZ = math::min(math::max(q[kMomZ] * inv, lo[2]), hi[2]) + dt * aZ * rs * inv;
+        } else {
+          vR = w_source(i, j, s, kVR) + dt * aR;
+          vphi = w_source(i, j, s, kVphi);
+          vZ = w_source(i, j, s, kVZ) + dt * aZ;
         }
-      const Real inv = 1.0 / q[kRho];
-      vR = math::min(math::max(q[kMomR] * inv, lo[0]), hi[0]) + dt * aR * rs * inv;
-      vphi = math::min(math::max(q[kAngMom] * inv, lo[1]), hi[1]) / R;
-      vZ = math::min(math::max(q[kMomZ] * inv, lo[2]), hi[2]) + dt * aZ * rs * inv;
-    } else {
-      vR = w_source(i, j, s, kVR) + dt * aR;
-      vphi = w_source(i, j, s, kVphi);
-      vZ = w_source(i, j, s, kVZ) + dt * aZ;
-    }
-    if (drag) {
-      const Real ts = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
-      vR = dust::implicit_drag(vR, vgR(i, j), dt, ts);
-      vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
-      vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
-    }
-    w_out(i, j, s, kRho) = rho;
-    w_out(i, j, s, kVR) = vR;
-    w_out(i, j, s, kVphi) = vphi;
-    w_out(i, j, s, kVZ) = vZ;
-    if (update_q) {
-      Q_(i, j, s, kRho) = rho;
-      Q_(i, j, s, kMomR) = rho * vR;
-      Q_(i, j, s, kAngMom) = rho * vphi * R;
-      Q_(i, j, s, kMomZ) = rho * vZ;
-    }
-  });
+        if (drag) {
+          const Real ts = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
+          vR = dust::implicit_drag(vR, vgR(i, j), dt, ts);
+          vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
+          vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
+        }
+        w_out(i, j, s, kRho) = rho;
+        w_out(i, j, s, kVR) = vR;
+        w_out(i, j, s, kVphi) = vphi;
+        w_out(i, j, s, kVZ) = vZ;
+        if (update_q) {
+          Q_(i, j, s, kRho) = rho;
+          Q_(i, j, s, kMomR) = rho * vR;
+          Q_(i, j, s, kAngMom) = rho * vphi * R;
+          Q_(i, j, s, kMomZ) = rho * vZ;
+        }
+      });
 }
 
 void DustDynamics::step(double dt) {
@@ -372,8 +390,7 @@ double DustDynamics::max_dt() const {
   auto Zc = grid_.Zc;
   Real dt = std::numeric_limits<Real>::max();
   Kokkos::parallel_reduce(
-      "disc::dust_max_dt",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
+      "disc::dust_max_dt", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
       KOKKOS_LAMBDA(int i, int j, int s, Real& m) {
         const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
         const Real vR = math::fabs(W_(i, j, s, kVR)), vZ = math::fabs(W_(i, j, s, kVZ));
@@ -404,8 +421,9 @@ double DustDynamics::mass(int s) const {
   auto Q_ = Q;
   auto V = grid_.V;
   Real m = 0;
-  par_reduce("disc::dust_mass", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
-             KOKKOS_LAMBDA(int i, int j, Real& acc) { acc += Q_(i, j, s, kRho) * V(i, j); }, m);
+  par_reduce(
+      "disc::dust_mass", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
+      KOKKOS_LAMBDA(int i, int j, Real& acc) { acc += Q_(i, j, s, kRho) * V(i, j); }, m);
   return grid_.comm().sum(m);
 }
 
@@ -414,9 +432,10 @@ View<Real***> DustDynamics::stopping_times() const {
   auto rho_g = gas_.rho, cs2 = gas_.cs2;
   auto sizes = sizes_;
   const Real rho_m = settings_.rho_grain;
-  for_cells("disc::dust_stopping_times", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
-    ts(i, j, s) = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
-  });
+  for_cells(
+      "disc::dust_stopping_times", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+        ts(i, j, s) = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
+      });
   return ts;
 }
 

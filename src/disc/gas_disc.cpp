@@ -97,7 +97,8 @@ void GasDisc::update_structure() {
     gas_temperature_profile(grid_, cfg_, gas_.T, gas_.cs2);
   }
   gas_viscosity(grid_, cfg_, j_mid_, gas_.cs2, gas_.nu, gas_.nu_mid);
-  gas_hydrostatic_density(grid_, cfg_.gravity(), gas_.column_fraction, cfg_.rho_floor, j_mid_, gas_.cs2, gas_.Sigma, gas_.rho);
+  gas_hydrostatic_density(grid_, cfg_.gravity(), gas_.column_fraction, cfg_.rho_floor, j_mid_, gas_.cs2, gas_.Sigma,
+                          gas_.rho);
   gas_velocities(grid_, halo_, scratch_, gas_);
 }
 

@@ -91,8 +91,8 @@ std::optional<io::NonFinite> GasDisc::find_non_finite() const {
         Kokkos::Min<int>(first));
     if (first != INT_MAX) {
       const int i = first / nt, j = first % nt;
-      return io::NonFinite{names[k], logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset, j,
-                                                 grid_.Rc_h(i + ib), grid_.tc_h(j + jb))};
+      return io::NonFinite{names[k], logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset,
+                                                     j, grid_.Rc_h(i + ib), grid_.tc_h(j + jb))};
     }
   }
   return std::nullopt;

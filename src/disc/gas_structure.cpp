@@ -53,8 +53,9 @@ void gas_viscosity(const mesh::Grid& grid, const GasConfig& cfg, int j_mid, cons
       "disc::gas_viscosity_mid", 0, grid.nr_total(), KOKKOS_LAMBDA(int i) { nu_mid(i) = nu(i, j_mid); });
 }
 
-void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction, Real rho_floor, int j_ref,
-                             const RealView2& cs2, const RealView1& Sigma, const RealView2& rho) {
+void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction,
+                             Real rho_floor, int j_ref, const RealView2& cs2, const RealView1& Sigma,
+                             const RealView2& rho) {
   auto Rc = grid.Rc, Re = grid.Re;
   auto V = grid.V, Zc = grid.Zc;
   const StellarGravity g = gravity;
@@ -70,7 +71,7 @@ void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravi
         for (int j = j_ref + 1; j < NJ; ++j) {
           const Real dPhi = g.potential(R, Zc(i, j)) - g.potential(R, Zc(i, j - 1));
           const Real mean_inv_cs2 = 0.5 * (1.0 / cs2(i, j) + 1.0 / cs2(i, j - 1));  // eq. 35
-          P *= math::exp(-mean_inv_cs2 * dPhi);                                       // eq. 34
+          P *= math::exp(-mean_inv_cs2 * dPhi);                                     // eq. 34
           rho(i, j) = P / cs2(i, j);
         }
         P = 1.0;

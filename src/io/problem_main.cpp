@@ -52,7 +52,9 @@ CommandLine parse_command_line(int argc, char** argv) {
 std::string usage(const ProblemDefinition& p) {
   return p.name + ": " + p.summary + "\n\nusage: " + p.name +
          " [deck.toml] [table.key=value ...] [--restart FILE|latest] [--check]\n"
-         "       " + p.name + " --help | --deck-reference\n\n"
+         "       " +
+         p.name +
+         " --help | --deck-reference\n\n"
          "  --restart FILE    continue from a checkpoint; without a deck, the deck stored in it is used\n"
          "  --restart latest  continue from the newest checkpoint in output.dir\n"
          "  --check           validate the deck, print it resolved, and exit\n"

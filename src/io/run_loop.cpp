@@ -39,31 +39,59 @@ class SignalGuard {
   }
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
-double wall_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 }  // namespace
 
 void RunSettings::declare(core::DeckSchema& schema) {
   schema.table("run", "Time loop: end time, step limit, checks and progress output.");
   schema.real("run.t_end").unit("code time").min(0.0).doc("End time of the run.");
-  schema.integer("run.max_steps").default_value(0LL).min(0).doc("Stop (with a checkpoint) after this many steps in total; 0 = no limit.");
-  schema.integer("run.nan_check_every").default_value(1LL).min(1).doc("Steps between checks of the evolved fields for NaN/Inf.");
-  schema.real("run.progress_interval").default_value(2.0).unit("s (wall)").min(0.0).doc("Wall-clock seconds between progress lines.");
+  schema.integer("run.max_steps")
+      .default_value(0LL)
+      .min(0)
+      .doc("Stop (with a checkpoint) after this many steps in total; 0 = no limit.");
+  schema.integer("run.nan_check_every")
+      .default_value(1LL)
+      .min(1)
+      .doc("Steps between checks of the evolved fields for NaN/Inf.");
+  schema.real("run.progress_interval")
+      .default_value(2.0)
+      .unit("s (wall)")
+      .min(0.0)
+      .doc("Wall-clock seconds between progress lines.");
   std::vector<std::string> names;
   for (auto p = units::unit_system_names(); *p; ++p) names.emplace_back(*p);
-  schema.string("run.units").default_value(std::string("dimensionless")).one_of(names).doc("Code-unit system: sets the cgs factors stored with every field.");
+  schema.string("run.units")
+      .default_value(std::string("dimensionless"))
+      .one_of(names)
+      .doc("Code-unit system: sets the cgs factors stored with every field.");
 
   schema.table("output", "Snapshots, checkpoints and history.");
-  schema.string("output.dir").default_value(std::string("output")).doc("Output directory (created after the deck is validated).");
-  schema.real("output.snapshot_dt").default_value(0.0).unit("code time").min(0.0).doc("Time between snapshots; 0 = initial and final only.");
-  schema.integer("output.checkpoint_every").default_value(0LL).min(0).doc("Steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM.");
-  schema.real("output.checkpoint_wall").default_value(0.0).unit("s (wall)").min(0.0).doc("Wall-clock seconds between checkpoints; 0 = off.");
-  schema.integer("output.checkpoints_kept").default_value(2LL).min(1).doc("Number of most recent checkpoints kept on disk.");
+  schema.string("output.dir")
+      .default_value(std::string("output"))
+      .doc("Output directory (created after the deck is validated).");
+  schema.real("output.snapshot_dt")
+      .default_value(0.0)
+      .unit("code time")
+      .min(0.0)
+      .doc("Time between snapshots; 0 = initial and final only.");
+  schema.integer("output.checkpoint_every")
+      .default_value(0LL)
+      .min(0)
+      .doc("Steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM.");
+  schema.real("output.checkpoint_wall")
+      .default_value(0.0)
+      .unit("s (wall)")
+      .min(0.0)
+      .doc("Wall-clock seconds between checkpoints; 0 = off.");
+  schema.integer("output.checkpoints_kept")
+      .default_value(2LL)
+      .min(1)
+      .doc("Number of most recent checkpoints kept on disk.");
   schema.integer("output.history_every").default_value(1LL).min(1).doc("Steps between rows of history.txt.");
 }
 
@@ -85,7 +113,11 @@ RunSettings RunSettings::from_deck(const core::Deck& deck) {
 
 RunLoop::RunLoop(RunSettings settings, std::string problem, const core::Deck& deck, units::UnitSystem units,
                  const core::Comm& comm, core::Timers& timers)
-    : settings_(std::move(settings)), problem_(std::move(problem)), deck_(deck), units_(std::move(units)), comm_(comm),
+    : settings_(std::move(settings)),
+      problem_(std::move(problem)),
+      deck_(deck),
+      units_(std::move(units)),
+      comm_(comm),
       timers_(timers) {}
 
 double RunLoop::next_snapshot_time(const State& s) const {
@@ -159,8 +191,8 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
 void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
   H5File file(path, H5File::Mode::Read, comm_);
   if (file.read_attribute_string("/", "problem") != problem_)
-    throw std::runtime_error("checkpoint '" + path + "' belongs to problem '" + file.read_attribute_string("/", "problem") +
-                             "', not '" + problem_ + "'");
+    throw std::runtime_error("checkpoint '" + path + "' belongs to problem '" +
+                             file.read_attribute_string("/", "problem") + "', not '" + problem_ + "'");
   s.time = file.read_attribute_real("/", "time");
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
@@ -175,8 +207,8 @@ bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
   const auto bad = sim.find_non_finite();
   if (bad)
     logging::error("non-finite value in field '", bad->field, "' at ", bad->location, " after step ", s.step,
-               logging::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
-               " holds the last good state.");
+                   logging::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
+                   " holds the last good state.");
   return comm_.max(bad ? 1 : 0) != 0;
 }
 
@@ -185,7 +217,7 @@ void RunLoop::progress(const State& s, double wall, long long steps_done) const 
   const double rate = wall > 0 ? steps_done / wall : 0.0;
   const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
   logging::info(logging::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
-                        100.0 * frac, logging::hms(eta).c_str(), rate));
+                                100.0 * frac, logging::hms(eta).c_str(), rate));
 }
 
 int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
@@ -208,7 +240,8 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
-      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step, "; writing a checkpoint and stopping");
+      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
+                    "; writing a checkpoint and stopping");
       write_checkpoint(sim, s);
       return kExitInterrupted;
     }
@@ -262,9 +295,9 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   write_checkpoint(sim, s);
   progress(s, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
-  logging::info(finished ? "finished" : "stopped at run.max_steps", logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)",
-                                                                           s.step - start_step, s.time, wall,
-                                                                           (s.step - start_step) / std::max(wall, 1e-30)));
+  logging::info(finished ? "finished" : "stopped at run.max_steps",
+                logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)", s.step - start_step, s.time, wall,
+                                (s.step - start_step) / std::max(wall, 1e-30)));
   if (finished) sim.finish(s.time);
   logging::info("timers:\n", timers_.summary(wall));
   return finished ? kExitFinished : kExitStepLimit;

@@ -20,8 +20,8 @@ void SnapshotWriter::rectilinear_2d(const std::vector<double>& x_nodes, const st
   file_.write("/mesh/y_nodes", Block::whole({y_nodes.size()}), y_nodes.data());
 }
 
-void SnapshotWriter::structured_2d(const double* x_nodes, const double* y_nodes, int rows_total, int cols, int row_begin,
-                                   int rows) {
+void SnapshotWriter::structured_2d(const double* x_nodes, const double* y_nodes, int rows_total, int cols,
+                                   int row_begin, int rows) {
   ny_ = rows_total;
   nx_ = cols;
   row_begin_ = row_begin;
@@ -61,7 +61,8 @@ void SnapshotWriter::particles(long long n_total, long long offset, long long co
   file_.write("/particles/position", b, xyz);
 }
 
-void SnapshotWriter::particle_field(const std::string& name, const double* data, int components, const FieldUnit& unit) {
+void SnapshotWriter::particle_field(const std::string& name, const double* data, int components,
+                                    const FieldUnit& unit) {
   if (mesh_ != Mesh::Particles) throw std::logic_error("particle_field before particles()");
   Block b;
   b.global_dims = {hsize_t(n_particles_)};
@@ -131,12 +132,12 @@ std::string SnapshotWriter::xdmf(const std::string& h5_name, double time) const 
     os << "   </Attribute>\n";
   }
   for (const auto& f : particle_fields_) {
-    const std::string dims = std::to_string(n_particles_) + (f.components > 1 ? " " + std::to_string(f.components) : "");
+    const std::string dims =
+        std::to_string(n_particles_) + (f.components > 1 ? " " + std::to_string(f.components) : "");
     const char* type = f.components == 1 ? "Scalar" : f.components == 3 ? "Vector" : "Matrix";
-    os << "   <Attribute Name=\"" << f.name << "\" AttributeType=\"" << type
-       << "\" Center=\"Node\">\n";
-    os << "    <DataItem Dimensions=\"" << dims << (f.integer ? int_item : float_item)
-       << h5_name << ":/particles/" << f.name << "</DataItem>\n";
+    os << "   <Attribute Name=\"" << f.name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n";
+    os << "    <DataItem Dimensions=\"" << dims << (f.integer ? int_item : float_item) << h5_name << ":/particles/"
+       << f.name << "</DataItem>\n";
     os << "   </Attribute>\n";
   }
   os << "  </Grid>\n </Domain>\n</Xdmf>\n";

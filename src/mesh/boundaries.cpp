@@ -17,7 +17,10 @@ void Boundaries::declare(core::DeckSchema& s) {
   const std::vector<std::string> kinds = {"outflow", "zero", "closed"};
   s.string("boundaries.inner").default_value(std::string("outflow")).one_of(kinds).doc("At R_in.");
   s.string("boundaries.outer").default_value(std::string("outflow")).one_of(kinds).doc("At R_out.");
-  s.string("boundaries.lower").default_value(std::string("closed")).one_of(kinds).doc("At theta_min (closed = mid-plane symmetry).");
+  s.string("boundaries.lower")
+      .default_value(std::string("closed"))
+      .one_of(kinds)
+      .doc("At theta_min (closed = mid-plane symmetry).");
   s.string("boundaries.upper").default_value(std::string("outflow")).one_of(kinds).doc("At theta_max.");
 }
 

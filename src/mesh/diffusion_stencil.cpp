@@ -78,56 +78,58 @@ void update_diffusion_coefficients(const Grid& grid, const RealView2& D, Diffusi
   auto theta_face = [=] KOKKOS_FUNCTION(int j) { return Face{Vec2{0.0, 0.0}, Vec2{-sin_te(j), cos_te(j)}}; };
 
   // Radial faces i in [1, NI), rows j in [1, NJ - 1): cells k=(i-1,j), l=(i,j), m=(i-1,j-1), p=(i,j+1).
-  par_for("mesh::diffusion_radial_coefficients", 1, NI, 1, NJ - 1, KOKKOS_LAMBDA(int i, int j) {
-    const Face sigma = radial_face(i), tau = theta_face(j), nu = theta_face(j + 1);
-    const Vec2 ck = centre(i - 1, j), cl = centre(i, j), cm = centre(i - 1, j - 1), cp = centre(i, j + 1);
-    const Real Dk = D(i - 1, j), Dl = D(i, j), Dm = D(i - 1, j - 1), Dp = D(i, j + 1);
-    const Real wk = weight(sigma, ck, Dk, cl, Dl), wl = 1.0 - wk;
-    const Real hk = harmonic_weight(sigma, ck, Dk, cl, Dl), hl = 1.0 - hk;
-    const Real hk_tau = harmonic_weight(tau, ck, Dk, cm, Dm), hm_tau = 1.0 - hk_tau;
-    const Real hl_nu = harmonic_weight(nu, cl, Dl, cp, Dp), hp_nu = 1.0 - hl_nu;
-    // One-sided flux out of k (normal +R) through sigma, with the bottom face tau of k.
-    Real c_kl, c_km;
-    decompose(interpolation_vector(sigma, ck, hk, cl, hl), interpolation_vector(tau, ck, hk_tau, cm, hm_tau),
-              sigma.normal, c_kl, c_km);
-    // One-sided flux out of l (normal -R) through sigma, with the top face nu of l.
-    Real c_lk, c_lp;
-    decompose(interpolation_vector(sigma, cl, hl, ck, hk), interpolation_vector(nu, cl, hl_nu, cp, hp_nu),
-              -1.0 * sigma.normal, c_lk, c_lp);
-    // F A = A [w_k F_k - w_l F_l],  F_k = -D_k [h_l c_kl (u_l-u_k) + h_m c_km (u_m-u_k)],
-    //                               F_l = -D_l [h_k c_lk (u_k-u_l) + h_p c_lp (u_p-u_l)].
-    const Real A = AR(i, j);
-    const Real ak = A * wk * Dk, al = A * wl * Dl;
-    radial(i, j, 0) = ak * hl * c_kl + ak * hm_tau * c_km + al * hk * c_lk;
-    radial(i, j, 1) = -ak * hl * c_kl - al * hk * c_lk - al * hp_nu * c_lp;
-    radial(i, j, 2) = -ak * hm_tau * c_km;
-    radial(i, j, 3) = al * hp_nu * c_lp;
-  });
+  par_for(
+      "mesh::diffusion_radial_coefficients", 1, NI, 1, NJ - 1, KOKKOS_LAMBDA(int i, int j) {
+        const Face sigma = radial_face(i), tau = theta_face(j), nu = theta_face(j + 1);
+        const Vec2 ck = centre(i - 1, j), cl = centre(i, j), cm = centre(i - 1, j - 1), cp = centre(i, j + 1);
+        const Real Dk = D(i - 1, j), Dl = D(i, j), Dm = D(i - 1, j - 1), Dp = D(i, j + 1);
+        const Real wk = weight(sigma, ck, Dk, cl, Dl), wl = 1.0 - wk;
+        const Real hk = harmonic_weight(sigma, ck, Dk, cl, Dl), hl = 1.0 - hk;
+        const Real hk_tau = harmonic_weight(tau, ck, Dk, cm, Dm), hm_tau = 1.0 - hk_tau;
+        const Real hl_nu = harmonic_weight(nu, cl, Dl, cp, Dp), hp_nu = 1.0 - hl_nu;
+        // One-sided flux out of k (normal +R) through sigma, with the bottom face tau of k.
+        Real c_kl, c_km;
+        decompose(interpolation_vector(sigma, ck, hk, cl, hl), interpolation_vector(tau, ck, hk_tau, cm, hm_tau),
+                  sigma.normal, c_kl, c_km);
+        // One-sided flux out of l (normal -R) through sigma, with the top face nu of l.
+        Real c_lk, c_lp;
+        decompose(interpolation_vector(sigma, cl, hl, ck, hk), interpolation_vector(nu, cl, hl_nu, cp, hp_nu),
+                  -1.0 * sigma.normal, c_lk, c_lp);
+        // F A = A [w_k F_k - w_l F_l],  F_k = -D_k [h_l c_kl (u_l-u_k) + h_m c_km (u_m-u_k)],
+        //                               F_l = -D_l [h_k c_lk (u_k-u_l) + h_p c_lp (u_p-u_l)].
+        const Real A = AR(i, j);
+        const Real ak = A * wk * Dk, al = A * wl * Dl;
+        radial(i, j, 0) = ak * hl * c_kl + ak * hm_tau * c_km + al * hk * c_lk;
+        radial(i, j, 1) = -ak * hl * c_kl - al * hk * c_lk - al * hp_nu * c_lp;
+        radial(i, j, 2) = -ak * hm_tau * c_km;
+        radial(i, j, 3) = al * hp_nu * c_lp;
+      });
 
   // Theta faces j in [1, NJ), columns i in [1, NI - 1): cells a=(i,j-1), l=(i,j), m=(i-1,j-1), b=(i+1,j).
-  par_for("mesh::diffusion_theta_coefficients", 1, NI - 1, 1, NJ, KOKKOS_LAMBDA(int i, int j) {
-    const Face lambda = theta_face(j), beta = radial_face(i), eps = radial_face(i + 1);
-    const Vec2 ca = centre(i, j - 1), cl = centre(i, j), cm = centre(i - 1, j - 1), cb = centre(i + 1, j);
-    const Real Da = D(i, j - 1), Dl = D(i, j), Dm = D(i - 1, j - 1), Db = D(i + 1, j);
-    const Real wa = weight(lambda, ca, Da, cl, Dl), wl = 1.0 - wa;
-    const Real ha = harmonic_weight(lambda, ca, Da, cl, Dl), hl = 1.0 - ha;
-    const Real ha_beta = harmonic_weight(beta, ca, Da, cm, Dm), hm_beta = 1.0 - ha_beta;
-    const Real hl_eps = harmonic_weight(eps, cl, Dl, cb, Db), hb_eps = 1.0 - hl_eps;
-    // Out of a (normal +n) through lambda, with the left face beta of a.
-    Real c_al, c_am;
-    decompose(interpolation_vector(lambda, ca, ha, cl, hl), interpolation_vector(beta, ca, ha_beta, cm, hm_beta),
-              lambda.normal, c_al, c_am);
-    // Out of l (normal -n) through lambda, with the right face eps of l.
-    Real c_la, c_lb;
-    decompose(interpolation_vector(lambda, cl, hl, ca, ha), interpolation_vector(eps, cl, hl_eps, cb, hb_eps),
-              -1.0 * lambda.normal, c_la, c_lb);
-    const Real A = AZ(i, j);
-    const Real aa = A * wa * Da, al = A * wl * Dl;
-    theta(i, j, 0) = aa * hl * c_al + aa * hm_beta * c_am + al * ha * c_la;
-    theta(i, j, 1) = -aa * hl * c_al - al * ha * c_la - al * hb_eps * c_lb;
-    theta(i, j, 2) = -aa * hm_beta * c_am;
-    theta(i, j, 3) = al * hb_eps * c_lb;
-  });
+  par_for(
+      "mesh::diffusion_theta_coefficients", 1, NI - 1, 1, NJ, KOKKOS_LAMBDA(int i, int j) {
+        const Face lambda = theta_face(j), beta = radial_face(i), eps = radial_face(i + 1);
+        const Vec2 ca = centre(i, j - 1), cl = centre(i, j), cm = centre(i - 1, j - 1), cb = centre(i + 1, j);
+        const Real Da = D(i, j - 1), Dl = D(i, j), Dm = D(i - 1, j - 1), Db = D(i + 1, j);
+        const Real wa = weight(lambda, ca, Da, cl, Dl), wl = 1.0 - wa;
+        const Real ha = harmonic_weight(lambda, ca, Da, cl, Dl), hl = 1.0 - ha;
+        const Real ha_beta = harmonic_weight(beta, ca, Da, cm, Dm), hm_beta = 1.0 - ha_beta;
+        const Real hl_eps = harmonic_weight(eps, cl, Dl, cb, Db), hb_eps = 1.0 - hl_eps;
+        // Out of a (normal +n) through lambda, with the left face beta of a.
+        Real c_al, c_am;
+        decompose(interpolation_vector(lambda, ca, ha, cl, hl), interpolation_vector(beta, ca, ha_beta, cm, hm_beta),
+                  lambda.normal, c_al, c_am);
+        // Out of l (normal -n) through lambda, with the right face eps of l.
+        Real c_la, c_lb;
+        decompose(interpolation_vector(lambda, cl, hl, ca, ha), interpolation_vector(eps, cl, hl_eps, cb, hb_eps),
+                  -1.0 * lambda.normal, c_la, c_lb);
+        const Real A = AZ(i, j);
+        const Real aa = A * wa * Da, al = A * wl * Dl;
+        theta(i, j, 0) = aa * hl * c_al + aa * hm_beta * c_am + al * ha * c_la;
+        theta(i, j, 1) = -aa * hl * c_al - al * ha * c_la - al * hb_eps * c_lb;
+        theta(i, j, 2) = -aa * hm_beta * c_am;
+        theta(i, j, 3) = al * hb_eps * c_lb;
+      });
 }
 
 }  // namespace mote::mesh

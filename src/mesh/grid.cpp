@@ -41,20 +41,42 @@ void GridSpec::declare(core::DeckSchema& s) {
   s.integer("grid.nr").min(1).doc("Active cells in R (over all MPI ranks).");
   s.real("grid.R_in").greater_than(0.0).unit("code length").doc("Inner radial edge.");
   s.real("grid.R_out").greater_than(0.0).unit("code length").doc("Outer radial edge (> R_in).");
-  s.string("grid.r_spacing").default_value(std::string("log")).one_of({"log", "linear", "edges"})
+  s.string("grid.r_spacing")
+      .default_value(std::string("log"))
+      .one_of({"log", "linear", "edges"})
       .doc("Radial spacing; \"edges\" takes grid.r_edges.");
-  s.real_array("grid.r_edges").default_value(std::vector<double>{}).min(0.0).unit("code length")
+  s.real_array("grid.r_edges")
+      .default_value(std::vector<double>{})
+      .min(0.0)
+      .unit("code length")
       .doc("Explicit increasing radial edges (nr + 1 values) for r_spacing = \"edges\".");
   s.integer("grid.ntheta").min(1).doc("Active cells in theta.");
-  s.real("grid.theta_min").default_value(0.0).min(-1.5).max(1.5).unit("rad").doc("Lowest edge angle above the mid-plane.");
+  s.real("grid.theta_min")
+      .default_value(0.0)
+      .min(-1.5)
+      .max(1.5)
+      .unit("rad")
+      .doc("Lowest edge angle above the mid-plane.");
   s.real("grid.theta_max").min(-1.5).max(1.5).unit("rad").doc("Highest edge angle above the mid-plane (> theta_min).");
-  s.string("grid.theta_spacing").default_value(std::string("linear")).one_of({"linear", "power", "blocks", "edges"})
-      .doc("Theta spacing: linear; power (theta_min + dtheta (k/n)^theta_power); blocks (two linear blocks split at theta_split, theta_block_cells below it); edges (grid.theta_edges).");
+  s.string("grid.theta_spacing")
+      .default_value(std::string("linear"))
+      .one_of({"linear", "power", "blocks", "edges"})
+      .doc(
+          "Theta spacing: linear; power (theta_min + dtheta (k/n)^theta_power); blocks (two linear blocks split at "
+          "theta_split, theta_block_cells below it); edges (grid.theta_edges).");
   s.real("grid.theta_power").default_value(1.0).greater_than(0.0).doc("Exponent for theta_spacing = \"power\".");
   s.real("grid.theta_split").default_value(0.0).unit("rad").doc("Block boundary for theta_spacing = \"blocks\".");
-  s.integer("grid.theta_block_cells").default_value(0LL).min(0).doc("Cells below theta_split for theta_spacing = \"blocks\".");
-  s.real_array("grid.theta_edges").default_value(std::vector<double>{}).unit("rad").doc("Explicit theta edges (ntheta + 1) for theta_spacing = \"edges\".");
-  s.string("grid.geometry").default_value(std::string("cylindrical")).one_of({"cylindrical", "planar"})
+  s.integer("grid.theta_block_cells")
+      .default_value(0LL)
+      .min(0)
+      .doc("Cells below theta_split for theta_spacing = \"blocks\".");
+  s.real_array("grid.theta_edges")
+      .default_value(std::vector<double>{})
+      .unit("rad")
+      .doc("Explicit theta edges (ntheta + 1) for theta_spacing = \"edges\".");
+  s.string("grid.geometry")
+      .default_value(std::string("cylindrical"))
+      .one_of({"cylindrical", "planar"})
       .doc("Cell volumes and areas: axisymmetric (eq. 1-3) or planar 2D (tests).");
 }
 
@@ -80,7 +102,9 @@ GridSpec GridSpec::from_deck(const core::Deck& d) {
     const double split = d.real("grid.theta_split");
     const int inner = static_cast<int>(d.integer("grid.theta_block_cells"));
     if (!(split > t0 && split < t1) || inner < 1 || inner >= g.ntheta)
-      throw core::DeckError("theta_spacing = \"blocks\" needs theta_min < grid.theta_split < theta_max and 1 <= grid.theta_block_cells < ntheta");
+      throw core::DeckError(
+          "theta_spacing = \"blocks\" needs theta_min < grid.theta_split < theta_max and 1 <= grid.theta_block_cells < "
+          "ntheta");
     g.theta_edges = block_edges(t0, split, t1, g.ntheta, inner);
   }
   if (ts == "edges") g.theta_edges = d.real_array("grid.theta_edges");
@@ -136,22 +160,23 @@ void fill_cell_geometry(Grid& g) {
   auto V_ = g.V, AR_ = g.AR, AZ_ = g.AZ, Zc_ = g.Zc;
   auto Re_ = g.Re, Rc_ = g.Rc, tte = g.tan_te, ttc = g.tan_tc, cte = g.cos_te;
   const bool planar = g.geometry == Geometry::Planar;
-  par_for("mesh::grid_geometry", 0, NI + 1, 0, NJ + 1, KOKKOS_LAMBDA(int i, int j) {
-    const Real r0 = Re_(i);
-    if (i < NI && j < NJ) {
-      const Real r1 = Re_(i + 1), dtan = tte(j + 1) - tte(j);
-      V_(i, j) = planar ? 0.5 * (r1 * r1 - r0 * r0) * dtan : (r1 * r1 * r1 - r0 * r0 * r0) * dtan / 3.0;
-      Zc_(i, j) = Rc_(i) * ttc(j);
-    }
-    if (j < NJ) {
-      const Real dtan = tte(j + 1) - tte(j);
-      AR_(i, j) = planar ? r0 * dtan : r0 * r0 * dtan;
-    }
-    if (i < NI) {
-      const Real r1 = Re_(i + 1);
-      AZ_(i, j) = planar ? (r1 - r0) / cte(j) : 0.5 * (r1 * r1 - r0 * r0) / cte(j);
-    }
-  });
+  par_for(
+      "mesh::grid_geometry", 0, NI + 1, 0, NJ + 1, KOKKOS_LAMBDA(int i, int j) {
+        const Real r0 = Re_(i);
+        if (i < NI && j < NJ) {
+          const Real r1 = Re_(i + 1), dtan = tte(j + 1) - tte(j);
+          V_(i, j) = planar ? 0.5 * (r1 * r1 - r0 * r0) * dtan : (r1 * r1 * r1 - r0 * r0 * r0) * dtan / 3.0;
+          Zc_(i, j) = Rc_(i) * ttc(j);
+        }
+        if (j < NJ) {
+          const Real dtan = tte(j + 1) - tte(j);
+          AR_(i, j) = planar ? r0 * dtan : r0 * r0 * dtan;
+        }
+        if (i < NI) {
+          const Real r1 = Re_(i + 1);
+          AZ_(i, j) = planar ? (r1 - r0) / cte(j) : 0.5 * (r1 * r1 - r0 * r0) / cte(j);
+        }
+      });
 }
 
 }  // namespace
@@ -165,8 +190,8 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   nr = base + (rank_ < extra ? 1 : 0);
   i_offset = rank_ * base + std::min(rank_, extra);
   if (nr < ng)
-    throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ", size_,
-                                   " ranks; increase grid.nr or use fewer ranks"));
+    throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ",
+                                       size_, " ranks; increase grid.nr or use fewer ranks"));
   r_edges_global = spec.r_edges;
   theta_edges_global = spec.theta_edges;
 

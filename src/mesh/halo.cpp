@@ -49,10 +49,11 @@ void RadialHalo::exchange_impl(const ViewT& f) {
   }
   auto send = send_, recv = recv_;
   // send[0, half): first ng active rows (to the left); send[half, 2 half): last ng active rows (to the right).
-  par_for("mesh::halo_pack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
-    send(g * per_row + m) = at(f, ng + g, m);
-    send(half + g * per_row + m) = at(f, nr + g, m);
-  });
+  par_for(
+      "mesh::halo_pack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
+        send(g * per_row + m) = at(f, ng + g, m);
+        send(half + g * per_row + m) = at(f, nr + g, m);
+      });
   auto send_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), send);
   auto recv_h = Kokkos::create_mirror_view(recv);
   // Rightward: my last rows go right; I receive my left neighbour's last rows.
@@ -61,10 +62,11 @@ void RadialHalo::exchange_impl(const ViewT& f) {
   comm_.sendrecv(send_h.data(), half, left_, recv_h.data() + half, half, right_, 22);
   Kokkos::deep_copy(recv, recv_h);
   const bool fill_left = left_ >= 0, fill_right = right_ >= 0;
-  par_for("mesh::halo_unpack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
-    if (fill_left) at(f, g, m) = recv(g * per_row + m);
-    if (fill_right) at(f, ng + nr + g, m) = recv(half + g * per_row + m);
-  });
+  par_for(
+      "mesh::halo_unpack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
+        if (fill_left) at(f, g, m) = recv(g * per_row + m);
+        if (fill_right) at(f, ng + nr + g, m) = recv(half + g * per_row + m);
+      });
 }
 
 void RadialHalo::exchange(const View<Real*>& f) { exchange_impl(f); }

@@ -58,7 +58,8 @@ DensityResult density_impl(Particles& p, const NeighbourList& nl, const Box& box
 
   DensityCounts counts;
   par_reduce(
-      "sph::density", 0, n, KOKKOS_LAMBDA(int a, DensityCounts& acc) {
+      "sph::density", 0, n,
+      KOKKOS_LAMBDA(int a, DensityCounts& acc) {
         const Real ma = m(a);
         const int ta = type(a);
         Real xa[3] = {0, 0, 0};

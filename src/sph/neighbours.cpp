@@ -42,15 +42,18 @@ RealView2 reuse(RealView2& kept, int n, int dim, const std::string& label) {
 /// backend. `fill` (ncell entries) is work space. Allocates nothing.
 void sort_by_cell(const IntView1& keys, int n, int ncell, const View<int*>& fill, const View<int*>& cell_start,
                   const View<int*>& cell_particles) {
-  par_for("sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
-  par_for("sph::neighbour_cell_count", 0, n, KOKKOS_LAMBDA(int i) { Kokkos::atomic_increment(&fill(keys(i))); });
+  par_for(
+      "sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
+  par_for(
+      "sph::neighbour_cell_count", 0, n, KOKKOS_LAMBDA(int i) { Kokkos::atomic_increment(&fill(keys(i))); });
   Kokkos::parallel_scan(
       "sph::neighbour_cell_start", Kokkos::RangePolicy<ExecSpace>(0, ncell + 1),
       KOKKOS_LAMBDA(int c, int& acc, bool final) {
         if (final) cell_start(c) = acc;
         if (c < ncell) acc += fill(c);
       });
-  par_for("sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
+  par_for(
+      "sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
   par_for(
       "sph::neighbour_cell_fill", 0, n, KOKKOS_LAMBDA(int i) {
         const int c = keys(i);
@@ -231,7 +234,8 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   g.cell_particles = reuse(nl.grid.cell_particles, n, "sph::cell_particles");
   const auto cell_start = g.cell_start;
   const auto cell_particles = g.cell_particles;
-  sort_by_cell(keys, n, nc_total, reuse(nl.work.cell_fill, nc_total, "sph::cell_fill", true), cell_start, cell_particles);
+  sort_by_cell(keys, n, nc_total, reuse(nl.work.cell_fill, nc_total, "sph::cell_fill", true), cell_start,
+               cell_particles);
   if (reorder) {
     // Cell order: particle i of the sorted set was cell_particles(i); the
     // previous list sizes move with their particles.

@@ -211,7 +211,7 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
   tva_violations_ = bad;
   if (bad > 0 && !warned_) {
     logging::warn("sph dust: eps T_s exceeds the Courant time-step on ", bad,
-              " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)");
+                  " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)");
     warned_ = true;
   }
   return dt;

@@ -7,7 +7,10 @@ void declare_settings(core::DeckSchema& s) {
   s.table("sph", "SPH hydrodynamics (PL15 sec. 3).");
   s.string("sph.kernel").default_value(std::string("m4")).one_of({"m4", "m6", "wendland_c4"}).doc("Smoothing kernel.");
   s.real("sph.hfact").default_value(0.0).min(0.0).doc("h / particle spacing; 0 = kernel default (1.2, or 1.0 for M6).");
-  s.string("sph.eos").default_value(std::string("adiabatic")).one_of({"adiabatic", "isothermal"}).doc("Equation of state.");
+  s.string("sph.eos")
+      .default_value(std::string("adiabatic"))
+      .one_of({"adiabatic", "isothermal"})
+      .doc("Equation of state.");
   s.real("sph.gamma").default_value(5.0 / 3.0).greater_than(1.0).doc("Adiabatic index.");
   s.real("sph.cs").default_value(1.0).greater_than(0.0).unit("code velocity").doc("Isothermal sound speed.");
   s.real("sph.alpha").default_value(1.0).min(0.0).doc("Linear artificial viscosity (eq. 31-32).");

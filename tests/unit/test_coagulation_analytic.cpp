@@ -49,8 +49,8 @@ Result run(const std::string& kernel, double t_end, double bins_per_decade, doub
     EXPECT_EQ(h(0, k), h(cells - 1, k));  // identical cells give identical results
   }
   auto next = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.next_substep());
-  std::printf("%s kernel, %s split, T = %g, %.1f bins/decade: L1_rel = %.4e, mass error %.2e, %lld sub-steps\n", kernel.c_str(), split.c_str(),
-              t_end, bins_per_decade, num / den, (mass - m0) / m0, steps);
+  std::printf("%s kernel, %s split, T = %g, %.1f bins/decade: L1_rel = %.4e, mass error %.2e, %lld sub-steps\n",
+              kernel.c_str(), split.c_str(), t_end, bins_per_decade, num / den, (mass - m0) / m0, steps);
   return {num / den, (mass - m0) / m0, next(0), steps};
 }
 

@@ -37,24 +37,26 @@ std::vector<double> run_bs32(double y0, double r, double span, coag::Bs32Options
   const Logistic rhs{r};
   const int n = 2;
   const auto policy = Policy(1, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(7 * Scratch::shmem_size(n)));
-  Kokkos::parallel_for("test::bs32", policy, KOKKOS_LAMBDA(const Policy::member_type& team) {
-    const auto& s = team.team_scratch(0);
-    const Scratch y(s, n);
-    const coag::Bs32Work<Scratch> w{Scratch(s, n), Scratch(s, n), Scratch(s, n), Scratch(s, n), Scratch(s, n), Scratch(s, n)};
-    Kokkos::single(Kokkos::PerTeam(team), [&]() {
-      y(0) = y0;
-      y(1) = 1.0 - y0;
-    });
-    team.team_barrier();
-    const auto res = coag::bs32_integrate(team, n, y, span, opt, w, rhs);
-    Kokkos::single(Kokkos::PerTeam(team), [&]() {
-      out(0) = y(0);
-      out(1) = y(1);
-      out(2) = res.accepted;
-      out(3) = res.rejected;
-      out(4) = res.h_next;
-    });
-  });
+  Kokkos::parallel_for(
+      "test::bs32", policy, KOKKOS_LAMBDA(const Policy::member_type& team) {
+        const auto& s = team.team_scratch(0);
+        const Scratch y(s, n);
+        const coag::Bs32Work<Scratch> w{Scratch(s, n), Scratch(s, n), Scratch(s, n),
+                                        Scratch(s, n), Scratch(s, n), Scratch(s, n)};
+        Kokkos::single(Kokkos::PerTeam(team), [&]() {
+          y(0) = y0;
+          y(1) = 1.0 - y0;
+        });
+        team.team_barrier();
+        const auto res = coag::bs32_integrate(team, n, y, span, opt, w, rhs);
+        Kokkos::single(Kokkos::PerTeam(team), [&]() {
+          out(0) = y(0);
+          out(1) = y(1);
+          out(2) = res.accepted;
+          out(3) = res.rejected;
+          out(4) = res.h_next;
+        });
+      });
   auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
   return {h(0), h(1), h(2), h(3), h(4)};
 }
@@ -80,7 +82,8 @@ TEST(CoagulationBs32, ObservedOrderThreeWithFixedSteps) {
   const double m = static_cast<double>(err.size());
   const double order = (m * sxy - sx * sy) / (m * sxx - sx * sx);
   RecordProperty("observed_order", std::to_string(order));
-  std::printf("BS32 fixed-step errors: %.3e %.3e %.3e %.3e, observed order %.3f\n", err[0], err[1], err[2], err[3], order);
+  std::printf("BS32 fixed-step errors: %.3e %.3e %.3e %.3e, observed order %.3f\n", err[0], err[1], err[2], err[3],
+              order);
   EXPECT_GE(order, 2.8);
   EXPECT_LE(order, 3.3);
 }

@@ -83,7 +83,8 @@ TEST_P(CoagulationRatesSplit, PhysicalKernelConservesMassPairByPair) {
 
 INSTANTIATE_TEST_SUITE_P(Splits, CoagulationRatesSplit, ::testing::Values("two-bin", "quadratic"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
-                           return std::string(info.param) == "two-bin" ? std::string("two_bin") : std::string(info.param);
+                           return std::string(info.param) == "two-bin" ? std::string("two_bin")
+                                                                       : std::string(info.param);
                          });
 
 TEST(CoagulationRates, TablesDeliverTheCollidingMass) {

@@ -65,14 +65,17 @@ TEST(Deck, WrongTypeIsRejected) {
   const auto msg = error_of("[grid]\nlength = 1.0\nnx = 2.5\n");
   EXPECT_NE(msg.find("test.toml:3: key 'grid.nx': expected integer"), std::string::npos) << msg;
   EXPECT_NE(msg.find("got real 2.5"), std::string::npos) << msg;
-  EXPECT_NE(error_of("[grid]\nlength = \"big\"\n").find("expected real > 0 [cm], got string \"big\""), std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = \"big\"\n").find("expected real > 0 [cm], got string \"big\""),
+            std::string::npos);
 }
 
 TEST(Deck, OutOfRangeIsRejected) {
-  EXPECT_NE(error_of("[grid]\nlength = 1.0\nnx = -4\n").find("key 'grid.nx': value -4 is out of range; expected integer >= 1"),
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\nnx = -4\n")
+                .find("key 'grid.nx': value -4 is out of range; expected integer >= 1"),
             std::string::npos);
   EXPECT_NE(error_of("[grid]\nlength = 0.0\n").find("expected real > 0"), std::string::npos);
-  EXPECT_NE(error_of("[grid]\nlength = 1.0\nkind = \"cubic\"\n").find("one of \"uniform\", \"log\""), std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\nkind = \"cubic\"\n").find("one of \"uniform\", \"log\""),
+            std::string::npos);
   EXPECT_NE(error_of("[grid]\nlength = 1.0\nsizes = [1.0, -1.0]\n").find("grid.sizes"), std::string::npos);
 }
 
@@ -83,7 +86,8 @@ TEST(Deck, MissingRequiredKey) {
 
 TEST(Deck, OptionalTableRequiredOnlyWhenPresent) {
   EXPECT_EQ(error_of("[grid]\nlength = 1.0\n"), "");
-  EXPECT_NE(error_of("[grid]\nlength = 1.0\n[dust]\n").find("missing required key 'dust.grain_size'"), std::string::npos);
+  EXPECT_NE(error_of("[grid]\nlength = 1.0\n[dust]\n").find("missing required key 'dust.grain_size'"),
+            std::string::npos);
   const auto schema = make_schema();
   const auto d = Deck::parse("[grid]\nlength = 1.0\n[dust]\ngrain_size = 0.1\n", "t.toml", schema);
   EXPECT_TRUE(d.has_table("dust"));
@@ -97,8 +101,8 @@ TEST(Deck, AllErrorsReportedTogether) {
 
 TEST(Deck, CommandLineOverrides) {
   const auto schema = make_schema();
-  const auto d = Deck::parse("[grid]\nlength = 1.0\n", "t.toml", schema,
-                             {"grid.nx=128", "grid.kind=log", "dust.grain_size=1e-4"});
+  const auto d =
+      Deck::parse("[grid]\nlength = 1.0\n", "t.toml", schema, {"grid.nx=128", "grid.kind=log", "dust.grain_size=1e-4"});
   EXPECT_EQ(d.integer("grid.nx"), 128);
   EXPECT_EQ(d.string("grid.kind"), "log");  // bare word taken as a string
   EXPECT_TRUE(d.has_table("dust"));         // an override can switch a table on

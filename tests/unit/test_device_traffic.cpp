@@ -68,15 +68,16 @@ class TrafficCounter {
   }
   static void keep(std::map<std::string, int>& labels, const std::string& label) { ++labels[label]; }
   static void on_deep_copy(Kokkos::Tools::SpaceHandle dst_space, const char* dst_name, const void*,
-                           Kokkos::Tools::SpaceHandle src_space, const char* src_name, const void*, std::uint64_t bytes) {
+                           Kokkos::Tools::SpaceHandle src_space, const char* src_name, const void*,
+                           std::uint64_t bytes) {
     if (std::string(src_name) == "Scalar") return;  // deep_copy(view, value): a fill kernel, no transfer
-    if (std::string(dst_name) == "Scalar") {         // deep_copy(value, view): one value back to the host
+    if (std::string(dst_name) == "Scalar") {        // deep_copy(value, view): one value back to the host
       ++state().scalar_reads;
       return;
     }
     ++state().copies;
-    keep(state().copy_labels,
-         std::string(src_space.name) + ":" + src_name + " -> " + dst_space.name + ":" + dst_name + " (" + std::to_string(bytes) + " B)");
+    keep(state().copy_labels, std::string(src_space.name) + ":" + src_name + " -> " + dst_space.name + ":" + dst_name +
+                                  " (" + std::to_string(bytes) + " B)");
   }
   static void on_allocate(Kokkos::Tools::SpaceHandle space, const char* name, const void*, std::uint64_t bytes) {
     ++state().allocations;
@@ -149,8 +150,9 @@ std::unique_ptr<disc::DiscSimulation> coupled_disc(int species) {
   for (int k = 0; k < species; ++k) sizes << (k ? ", " : "") << 1e-4 * std::pow(10.0, double(k) / (species - 1));
   sizes << "]";
   const auto deck = core::Deck::parse(kDiscDeck, "test_device_traffic", schema, {sizes.str()});
-  return std::make_unique<disc::DiscSimulation>(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
-                                                disc::DiscSimulation::well_mixed(std::vector<double>(species, 1e-3), 1e-40));
+  return std::make_unique<disc::DiscSimulation>(
+      deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+      disc::DiscSimulation::well_mixed(std::vector<double>(species, 1e-3), 1e-40));
 }
 
 }  // namespace

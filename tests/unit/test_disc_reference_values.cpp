@@ -21,7 +21,7 @@ namespace {
 
 using namespace mote;
 
-constexpr double kG = 6.67430e-8;          // cm^3 g^-1 s^-2
+constexpr double kG = 6.67430e-8;            // cm^3 g^-1 s^-2
 constexpr double kBoltzmann = 1.380649e-16;  // erg K^-1
 constexpr double kHydrogen = 1.6735575e-24;  // g
 constexpr double kAu = 1.495978707e13;       // cm

@@ -15,8 +15,9 @@ namespace {
 /// x_i = 1 + 0.5 sin(0.1 i). A free function: nvcc does not allow extended
 /// lambdas in a GoogleTest body (a private member function).
 void fill_smooth(const mote::RealView1& x) {
-  mote::par_for("test::fill_x", 0, static_cast<int>(x.extent(0)),
-                KOKKOS_LAMBDA(int i) { x(i) = 1.0 + 0.5 * mote::math::sin(0.1 * i); });
+  mote::par_for(
+      "test::fill_x", 0, static_cast<int>(x.extent(0)),
+      KOKKOS_LAMBDA(int i) { x(i) = 1.0 + 0.5 * mote::math::sin(0.1 * i); });
 }
 }  // namespace
 

@@ -28,8 +28,9 @@ namespace {
 RealView2 linear_field(const mesh::Grid& grid, Real b, Real c) {
   RealView2 u("u", grid.nr_total(), grid.nt_total());
   auto Rc = grid.Rc, tan_tc = grid.tan_tc;
-  par_for("test::linear", 0, grid.nr_total(), 0, grid.nt_total(),
-          KOKKOS_LAMBDA(int i, int j) { u(i, j) = 3.0 + b * Rc(i) + c * Rc(i) * tan_tc(j); });
+  par_for(
+      "test::linear", 0, grid.nr_total(), 0, grid.nt_total(),
+      KOKKOS_LAMBDA(int i, int j) { u(i, j) = 3.0 + b * Rc(i) + c * Rc(i) * tan_tc(j); });
   return u;
 }
 
@@ -42,15 +43,21 @@ Real worst_flux_error(const mesh::Grid& grid, const mesh::DiffusionCoefficients&
   Real worst = 0;
   const int i0 = grid.i_begin(), i1 = grid.i_end(), j0 = grid.j_begin(), j1 = grid.j_end();
   if (radial) {
-    par_reduce("test::radial_error", i0, i1 + 1, j0, j1, KOKKOS_LAMBDA(int i, int j, Real& w) {
-      const Real exact = -D0 * b * AR(i, j);
-      w = math::max(w, math::fabs(coef.radial_flux(u, i, j) - exact) / math::fabs(exact));
-    }, Kokkos::Max<Real>(worst));
+    par_reduce(
+        "test::radial_error", i0, i1 + 1, j0, j1,
+        KOKKOS_LAMBDA(int i, int j, Real& w) {
+          const Real exact = -D0 * b * AR(i, j);
+          w = math::max(w, math::fabs(coef.radial_flux(u, i, j) - exact) / math::fabs(exact));
+        },
+        Kokkos::Max<Real>(worst));
   } else {
-    par_reduce("test::theta_error", i0, i1, j0, j1 + 1, KOKKOS_LAMBDA(int i, int j, Real& w) {
-      const Real exact = -D0 * (-b * sin_te(j) + c * cos_te(j)) * AZ(i, j);
-      w = math::max(w, math::fabs(coef.theta_flux(u, i, j) - exact) / math::fabs(exact));
-    }, Kokkos::Max<Real>(worst));
+    par_reduce(
+        "test::theta_error", i0, i1, j0, j1 + 1,
+        KOKKOS_LAMBDA(int i, int j, Real& w) {
+          const Real exact = -D0 * (-b * sin_te(j) + c * cos_te(j)) * AZ(i, j);
+          w = math::max(w, math::fabs(coef.theta_flux(u, i, j) - exact) / math::fabs(exact));
+        },
+        Kokkos::Max<Real>(worst));
   }
   return worst;
 }
@@ -59,7 +66,9 @@ Real worst_flux_error(const mesh::Grid& grid, const mesh::DiffusionCoefficients&
 RealView2 varying_diffusivity(const mesh::Grid& grid) {
   RealView2 D("D", grid.nr_total(), grid.nt_total());
   auto Rc = grid.Rc;
-  par_for("test::D", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) { D(i, j) = 1.0 + 0.1 * Rc(i) + j; });
+  par_for(
+      "test::D", 0, grid.nr_total(), 0, grid.nt_total(),
+      KOKKOS_LAMBDA(int i, int j) { D(i, j) = 1.0 + 0.1 * Rc(i) + j; });
   return D;
 }
 }  // namespace

@@ -29,8 +29,8 @@ TEST(MeshGrid, VolumesSumToTheDomain) {
     for (int i = grid.i_begin(); i < grid.i_end(); ++i)
       for (int j = grid.j_begin(); j < grid.j_end(); ++j) sum += V(i, j);
     const double dtan = std::tan(M_PI / 4) - std::tan(0.0);
-    const double exact = g == mesh::Geometry::Cylindrical ? (std::pow(20.0, 3) - 27.0) / 3.0 * dtan
-                                                          : 0.5 * (400.0 - 9.0) * dtan;
+    const double exact =
+        g == mesh::Geometry::Cylindrical ? (std::pow(20.0, 3) - 27.0) / 3.0 * dtan : 0.5 * (400.0 - 9.0) * dtan;
     EXPECT_NEAR(sum / exact, 1.0, 1e-13);
   }
 }

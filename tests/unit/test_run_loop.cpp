@@ -56,7 +56,9 @@ class RunLoopTest : public ::testing::Test {
  protected:
   void SetUp() override {
     io::RunSettings::declare(schema_);
-    dir_ = (fs::temp_directory_path() / ("mote_run_loop_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()))).string();
+    dir_ = (fs::temp_directory_path() /
+            ("mote_run_loop_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())))
+               .string();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -300,7 +300,7 @@ double column_3d_density_error(int nx) {
 
 TEST(SphDustSettling, ThreeDimensionalColumnIsHydrostatic) {
   const double e6 = column_3d_density_error(6), e8 = column_3d_density_error(8);
-  EXPECT_LT(e8, 0.02);      // measured 1.47e-2 (M4, h = 1.2 dx, h ~ 0.3 H at the mid-plane)
+  EXPECT_LT(e8, 0.02);  // measured 1.47e-2 (M4, h = 1.2 dx, h ~ 0.3 H at the mid-plane)
   // Converges: measured 1.66, order 1.76 in the spacing (8/6); asserted as order >= 1.5.
   EXPECT_GT(std::log(e6 / e8) / std::log(8.0 / 6.0), 1.5);
 }
@@ -333,9 +333,10 @@ TEST(SphDustSettling, LatticeHalfHeightSetsTheColumn) {
     const double mid = 0.5 * (lo + hi);
     (std::erf(mid / std::sqrt(2.0)) < slab * (1.0 - 1.0 / layers) ? lo : hi) = mid;
   }
-  std::printf("[column z_max 2.6H] %d particles in %d layers, top at %.4f H (expected %.4f H), mass / eq. 55 - 1 = "
-              "%.1e\n",
-              n, layers, zmax / H, lo, mass / mass_ref - 1.0);
+  std::printf(
+      "[column z_max 2.6H] %d particles in %d layers, top at %.4f H (expected %.4f H), mass / eq. 55 - 1 = "
+      "%.1e\n",
+      n, layers, zmax / H, lo, mass / mass_ref - 1.0);
   EXPECT_NEAR(zmax / H, lo, 0.01);
   EXPECT_NEAR(mass / mass_ref, 1.0, 1e-6);
   col.z_max = 0.0;

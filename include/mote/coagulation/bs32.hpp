@@ -20,15 +20,15 @@ namespace mote::coagulation {
 
 struct Bs32Options {
   Real rel_tol = 1e-2;
-  Real abs_tol = 0;          // absolute tolerance (already scaled by the caller)
-  Real h_init = 0;           // first trial step; <= 0: estimated from f(y)
-  Real h_fixed = 0;          // > 0: fixed steps of this size, no error control (order tests)
-  bool positive = true;      // reject steps that make a component < -abs_tol
-  int max_steps = 1000000;   // accepted + rejected steps before giving up
+  Real abs_tol = 0;         // absolute tolerance (already scaled by the caller)
+  Real h_init = 0;          // first trial step; <= 0: estimated from f(y)
+  Real h_fixed = 0;         // > 0: fixed steps of this size, no error control (order tests)
+  bool positive = true;     // reject steps that make a component < -abs_tol
+  int max_steps = 1000000;  // accepted + rejected steps before giving up
 };
 
 struct Bs32Result {
-  Real h_next = 0;     // proposed next step (untruncated)
+  Real h_next = 0;  // proposed next step (untruncated)
   int accepted = 0;
   int rejected = 0;
   bool ok = true;
@@ -53,9 +53,10 @@ KOKKOS_INLINE_FUNCTION Bs32Result bs32_integrate(const Team& team, int n, const 
   Real h = opt.h_fixed > 0 ? opt.h_fixed : opt.h_init;
   if (!(h > 0)) {
     Real d1 = 0;
-    Kokkos::parallel_reduce(Kokkos::TeamThreadRange(team, n), [&](int k, Real& m) {
-      m = math::max(m, math::fabs(k1(k)) / (atol + rtol * math::fabs(y(k))));
-    }, Kokkos::Max<Real>(d1));
+    Kokkos::parallel_reduce(
+        Kokkos::TeamThreadRange(team, n),
+        [&](int k, Real& m) { m = math::max(m, math::fabs(k1(k)) / (atol + rtol * math::fabs(y(k)))); },
+        Kokkos::Max<Real>(d1));
     h = d1 > 0 ? 0.1 / (rtol * d1) : span;
   }
   Real t = 0;
@@ -79,13 +80,16 @@ KOKKOS_INLINE_FUNCTION Bs32Result bs32_integrate(const Team& team, int n, const 
     rhs(team, yn, k4);
     Real err = 0;
     if (!(opt.h_fixed > 0)) {
-      Kokkos::parallel_reduce(Kokkos::TeamThreadRange(team, n), [&](int k, Real& m) {
-        const Real e = hh * ((-5.0 / 72.0) * k1(k) + (1.0 / 12.0) * k2(k) + (1.0 / 9.0) * k3(k) - 0.125 * k4(k));
-        Real r = math::fabs(e) / (atol + rtol * math::max(math::fabs(y(k)), math::fabs(yn(k))));
-        if (opt.positive && yn(k) < -atol) r = math::max(r, -2.0 * yn(k) / atol);
-        if (!math::isfinite(r)) r = 1e30;
-        m = math::max(m, r);
-      }, Kokkos::Max<Real>(err));
+      Kokkos::parallel_reduce(
+          Kokkos::TeamThreadRange(team, n),
+          [&](int k, Real& m) {
+            const Real e = hh * ((-5.0 / 72.0) * k1(k) + (1.0 / 12.0) * k2(k) + (1.0 / 9.0) * k3(k) - 0.125 * k4(k));
+            Real r = math::fabs(e) / (atol + rtol * math::max(math::fabs(y(k)), math::fabs(yn(k))));
+            if (opt.positive && yn(k) < -atol) r = math::max(r, -2.0 * yn(k) / atol);
+            if (!math::isfinite(r)) r = 1e30;
+            m = math::max(m, r);
+          },
+          Kokkos::Max<Real>(err));
     }
     if (err <= 1.0) {
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) {

@@ -36,9 +36,20 @@ struct CellRates {
 
   CellRates() = default;
   CellRates(const CollisionTables& t, const PairCoefficients& kc, const PairCoefficients& kf, bool frag)
-      : n(t.species), mass(t.mass), coag(t.coag), remnant(t.remnant), fragment(t.fragment),
-        coag_correction(t.coag_correction), remnant_correction(t.remnant_correction), fragment_share(t.fragment_share),
-        pair_i(t.pair_i), pair_j(t.pair_j), self_target(t.self_target), k_coag(kc), k_frag(kf), has_fragmentation(frag),
+      : n(t.species),
+        mass(t.mass),
+        coag(t.coag),
+        remnant(t.remnant),
+        fragment(t.fragment),
+        coag_correction(t.coag_correction),
+        remnant_correction(t.remnant_correction),
+        fragment_share(t.fragment_share),
+        pair_i(t.pair_i),
+        pair_j(t.pair_j),
+        self_target(t.self_target),
+        k_coag(kc),
+        k_frag(kf),
+        has_fragmentation(frag),
         has_correction(t.has_correction) {}
 
   /// Scratch values the rate evaluation needs besides y and dydt: nd, bucket (n each), theta (2 n).

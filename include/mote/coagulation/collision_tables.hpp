@@ -57,14 +57,14 @@ struct CollisionTables {
   /// in the bin of the larger grain i; that entry's weight is net of the mass the
   /// collision removes from bin i, and the loss term of bin i skips the channel.
   IntView1 self_target;
-  GatherList coag;          // target bin k; weight = mass delivered to k per coagulating collision
-  GatherList remnant;       // target bin k; weight = remnant mass delivered to k per fragmenting collision
-  GatherList fragment;      // target fragment bin l; weight = m_frag per fragmenting collision
+  GatherList coag;      // target bin k; weight = mass delivered to k per coagulating collision
+  GatherList remnant;   // target bin k; weight = remnant mass delivered to k per fragmenting collision
+  GatherList fragment;  // target fragment bin l; weight = m_frag per fragmenting collision
   /// Quadratic split only (else empty): zero-mass, zero-number corrections of the
   /// coagulation and remnant splits, each entry scaled by its limiter theta.
   GatherList coag_correction, remnant_correction;
   bool has_correction = false;
-  RealView2 fragment_share; // (l, k): fraction of fragment bin l's mass put in bin k <= l (eq. 67), rows sum to 1
+  RealView2 fragment_share;  // (l, k): fraction of fragment bin l's mass put in bin k <= l (eq. 67), rows sum to 1
 };
 
 /// Builds the tables for a grid, impactor excavation factor chi_im (eq. 68),

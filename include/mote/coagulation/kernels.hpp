@@ -57,12 +57,12 @@ struct GasCells {
 };
 
 struct PhysicalKernel {
-  RealView1 mass, size;      // grain masses and radii (MassGrid)
+  RealView1 mass, size;  // grain masses and radii (MassGrid)
   GasCells gas;
-  Real rho_m = 1.6;          // intrinsic grain density
+  Real rho_m = 1.6;                  // intrinsic grain density
   Real mu_mH = 2.4 * 1.6735575e-24;  // mean molecular mass mu m_H
-  Real sigma_h2 = 2e-15;     // collision cross-section of H2 for the mean free path (cm^2)
-  Real v_frag = 100.0;       // fragmentation velocity
+  Real sigma_h2 = 2e-15;             // collision cross-section of H2 for the mean free path (cm^2)
+  Real v_frag = 100.0;               // fragmentation velocity
   bool vertically_integrated = false;
   bool fragmentation = true;
 
@@ -86,7 +86,8 @@ struct PhysicalKernel {
     const Real nu_mol = 0.5 * math::sqrt(8.0 / math::pi()) * cs * lambda;
     const Real re = alpha * cs * H / nu_mol;
     const Real kT = mu_mH * cs * cs;
-    Real dv2 = brownian_dv2(mi, mj, kT) + (dens > 0 ? alpha * cs * cs * turbulent_vrel2(st_i, st_j, 1.0 / math::sqrt(re)) : 0.0);
+    Real dv2 = brownian_dv2(mi, mj, kT) +
+               (dens > 0 ? alpha * cs * cs * turbulent_vrel2(st_i, st_j, 1.0 / math::sqrt(re)) : 0.0);
     // Laminar relative motion: dynamics velocities, or settling/drift estimates.
     Real h_i = H, h_j = H;
     if (vertically_integrated) {

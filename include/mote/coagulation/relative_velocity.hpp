@@ -61,9 +61,7 @@ KOKKOS_INLINE_FUNCTION Real turbulent_vrel2(Real st1, Real st2, Real re_inv_sqrt
 
 /// Dust scale height with turbulent mixing against settling, h = H / sqrt(1 + St/alpha)
 /// (Dubrulle et al. 1995; the Gaussian profile of RBO24 sec. 5.1).
-KOKKOS_INLINE_FUNCTION Real dust_scale_height(Real H, Real st, Real alpha) {
-  return H / math::sqrt(1.0 + st / alpha);
-}
+KOKKOS_INLINE_FUNCTION Real dust_scale_height(Real H, Real st, Real alpha) { return H / math::sqrt(1.0 + st / alpha); }
 
 /// Terminal settling speed at height z, Omega z min(St, 1/2) (RBO24 sec. 5.1:
 /// z = the dust scale height for the vertically integrated kernel).

@@ -34,7 +34,8 @@ class StandaloneCells : public io::Simulation {
  protected:
   /// Writes the mass grid (/data/mass, /data/mass_edges, /data/grain_size) and
   /// the densities (/data/density, cells x species).
-  void write_distribution(io::SnapshotWriter& out, const io::FieldUnit& mass_unit, const io::FieldUnit& size_unit) const;
+  void write_distribution(io::SnapshotWriter& out, const io::FieldUnit& mass_unit,
+                          const io::FieldUnit& size_unit) const;
   /// Row-major (cells, species) host copy of the densities.
   std::vector<double> host_density() const;
   /// Mass error relative to the initial state and call statistics, for messages.

@@ -28,10 +28,10 @@ class KeySpec {
   KeySpec& unit(std::string text);
   /// Gives the key a default; a key without one is required.
   KeySpec& default_value(Value value);
-  KeySpec& min(double bound);            // value >= bound (every element for arrays)
-  KeySpec& greater_than(double bound);   // value > bound
-  KeySpec& max(double bound);            // value <= bound
-  KeySpec& less_than(double bound);      // value < bound
+  KeySpec& min(double bound);           // value >= bound (every element for arrays)
+  KeySpec& greater_than(double bound);  // value > bound
+  KeySpec& max(double bound);           // value <= bound
+  KeySpec& less_than(double bound);     // value < bound
   KeySpec& one_of(std::vector<std::string> choices);
 
   const std::string& table() const { return table_; }

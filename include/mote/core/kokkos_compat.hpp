@@ -15,24 +15,24 @@
 
 namespace mote::math {
 
+using MOTE_KOKKOS_MATH_NS::atan2;
 using MOTE_KOKKOS_MATH_NS::cbrt;
+using MOTE_KOKKOS_MATH_NS::ceil;
 using MOTE_KOKKOS_MATH_NS::cos;
+using MOTE_KOKKOS_MATH_NS::erf;
 using MOTE_KOKKOS_MATH_NS::exp;
 using MOTE_KOKKOS_MATH_NS::expm1;
 using MOTE_KOKKOS_MATH_NS::fabs;
-using MOTE_KOKKOS_MATH_NS::fmax;
 using MOTE_KOKKOS_MATH_NS::floor;
+using MOTE_KOKKOS_MATH_NS::fmax;
 using MOTE_KOKKOS_MATH_NS::fmin;
 using MOTE_KOKKOS_MATH_NS::hypot;
 using MOTE_KOKKOS_MATH_NS::isfinite;
 using MOTE_KOKKOS_MATH_NS::isnan;
 using MOTE_KOKKOS_MATH_NS::log;
+using MOTE_KOKKOS_MATH_NS::log10;
 using MOTE_KOKKOS_MATH_NS::pow;
 using MOTE_KOKKOS_MATH_NS::sin;
-using MOTE_KOKKOS_MATH_NS::ceil;
-using MOTE_KOKKOS_MATH_NS::erf;
-using MOTE_KOKKOS_MATH_NS::atan2;
-using MOTE_KOKKOS_MATH_NS::log10;
 using MOTE_KOKKOS_MATH_NS::sqrt;
 using MOTE_KOKKOS_MATH_NS::tanh;
 

@@ -20,11 +20,17 @@ void warn_line(const std::string& message);
 void error_line(const std::string& message);
 
 template <class... Args>
-void info(const Args&... args) { info_line(cat(args...)); }
+void info(const Args&... args) {
+  info_line(cat(args...));
+}
 template <class... Args>
-void warn(const Args&... args) { warn_line(cat(args...)); }
+void warn(const Args&... args) {
+  warn_line(cat(args...));
+}
 template <class... Args>
-void error(const Args&... args) { error_line(cat(args...)); }
+void error(const Args&... args) {
+  error_line(cat(args...));
+}
 
 /// printf-style formatting into a std::string (for fixed-width numbers).
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));

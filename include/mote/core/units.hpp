@@ -7,21 +7,21 @@
 namespace mote::units {
 
 namespace cgs {
-inline constexpr double G = 6.67430e-8;            // cm^3 g^-1 s^-2
-inline constexpr double c = 2.99792458e10;         // cm s^-1
-inline constexpr double k_B = 1.380649e-16;        // erg K^-1
-inline constexpr double h_planck = 6.62607015e-27; // erg s
-inline constexpr double sigma_SB = 5.670374419e-5; // erg cm^-2 s^-1 K^-4
-inline constexpr double a_rad = 4.0 * sigma_SB / c; // erg cm^-3 K^-4
-inline constexpr double m_H = 1.6735575e-24;       // g (hydrogen atom)
-inline constexpr double m_p = 1.67262192369e-24;   // g
-inline constexpr double au = 1.495978707e13;       // cm
-inline constexpr double pc = 3.0856775814913673e18; // cm
-inline constexpr double year = 3.15576e7;          // s (Julian year)
-inline constexpr double M_sun = 1.98840987e33;     // g (GM_sun / G)
-inline constexpr double R_sun = 6.957e10;          // cm
-inline constexpr double L_sun = 3.828e33;          // erg s^-1
-inline constexpr double M_earth = 5.97216787e27;   // g
+inline constexpr double G = 6.67430e-8;              // cm^3 g^-1 s^-2
+inline constexpr double c = 2.99792458e10;           // cm s^-1
+inline constexpr double k_B = 1.380649e-16;          // erg K^-1
+inline constexpr double h_planck = 6.62607015e-27;   // erg s
+inline constexpr double sigma_SB = 5.670374419e-5;   // erg cm^-2 s^-1 K^-4
+inline constexpr double a_rad = 4.0 * sigma_SB / c;  // erg cm^-3 K^-4
+inline constexpr double m_H = 1.6735575e-24;         // g (hydrogen atom)
+inline constexpr double m_p = 1.67262192369e-24;     // g
+inline constexpr double au = 1.495978707e13;         // cm
+inline constexpr double pc = 3.0856775814913673e18;  // cm
+inline constexpr double year = 3.15576e7;            // s (Julian year)
+inline constexpr double M_sun = 1.98840987e33;       // g (GM_sun / G)
+inline constexpr double R_sun = 6.957e10;            // cm
+inline constexpr double L_sun = 3.828e33;            // erg s^-1
+inline constexpr double M_earth = 5.97216787e27;     // g
 }  // namespace cgs
 
 /// A system of code units given by its length, mass and time units in cgs.

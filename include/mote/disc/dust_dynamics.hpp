@@ -43,14 +43,14 @@ enum DustVar : int { kRho = 0, kMomR = 1, kAngMom = 2, kMomZ = 3, kDustVars = 4 
 enum DustPrim : int { kVR = 1, kVphi = 2, kVZ = 3 };
 
 struct DustSettings {
-  std::vector<double> sizes;     // grain radii, code length
-  std::vector<double> schmidt;   // per species
-  double rho_grain = 1.0;        // material density, code units
-  double floor = 1e-40;          // density floor, code units
+  std::vector<double> sizes;    // grain radii, code length
+  std::vector<double> schmidt;  // per species
+  double rho_grain = 1.0;       // material density, code units
+  double floor = 1e-40;         // density floor, code units
   double cfl_advection = 0.4, cfl_diffusion = 0.2;
   bool diffusion = true, drag = true, gravity = true;
-  bool radial_fluxes = true;     // false: no flux through radial faces (columns independent)
-  StellarGravity star;           // stellar gravity (the gas structure's)
+  bool radial_fluxes = true;  // false: no flux through radial faces (columns independent)
+  StellarGravity star;        // stellar gravity (the gas structure's)
   mesh::Boundaries boundaries;
 
   /// Deck table [dust] (sizes in cm, rho_grain in g/cm^3, converted with the unit system).
@@ -92,7 +92,6 @@ class DustDynamics {
   void advance_stage(const View<Real****>& w_source, double dt_stage, const View<Real****>& w_out, bool update_q);
 
  private:
-
   const mesh::Grid& grid_;
   DustSettings settings_;
   int ns_;

@@ -21,7 +21,8 @@ KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real inv
 }
 
 /// Limited slope dq/dx in a cell at x_c with neighbours at x_m, x_p and faces x_fm, x_fp.
-KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m, Real x_c, Real x_p, Real x_fm, Real x_fp) {
+KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m, Real x_c, Real x_p, Real x_fm,
+                                          Real x_fp) {
   return mignone_slope(q_m, q_c, q_p, 1.0 / (x_p - x_c), 1.0 / (x_c - x_m), (x_p - x_c) / (x_fp - x_c),
                        (x_c - x_m) / (x_c - x_fm));
 }
@@ -30,7 +31,7 @@ KOKKOS_INLINE_FUNCTION Real mignone_slope(Real q_m, Real q_c, Real q_p, Real x_m
 /// (-1 left, +1 right, 0 average, 2 vacuum: no flux) from the densities and
 /// normal velocities of the two reconstructed states.
 KOKKOS_INLINE_FUNCTION int upwind_side(Real rho_l, Real vn_l, Real rho_r, Real vn_r) {
-  if (vn_l < 0 && vn_r > 0) return 2;  // diverging flow: vacuum, no flux
+  if (vn_l < 0 && vn_r > 0) return 2;    // diverging flow: vacuum, no flux
   if (vn_l > 0 && vn_r >= 0) return -1;  // both to the right: the Roe average is positive
   if (vn_l <= 0 && vn_r < 0) return 1;   // both to the left: negative
   const Real sl = math::sqrt(rho_l), sr = math::sqrt(rho_r);
@@ -44,10 +45,14 @@ KOKKOS_INLINE_FUNCTION int upwind_side(Real rho_l, Real vn_l, Real rho_r, Real v
 /// upwind side from upwind_side(): q_l vn_l, q_r vn_r, their mean, or zero.
 KOKKOS_INLINE_FUNCTION Real upwind_flux(int side, Real q_l, Real vn_l, Real q_r, Real vn_r) {
   switch (side) {
-    case -1: return q_l * vn_l;
-    case 1: return q_r * vn_r;
-    case 0: return 0.5 * (q_l * vn_l + q_r * vn_r);
-    default: return 0.0;
+    case -1:
+      return q_l * vn_l;
+    case 1:
+      return q_r * vn_r;
+    case 0:
+      return 0.5 * (q_l * vn_l + q_r * vn_r);
+    default:
+      return 0.0;
   }
 }
 

@@ -32,7 +32,8 @@ void gas_sound_speed_from_temperature(const GasConfig& cfg, const RealView2& T, 
 void gas_viscosity(const mesh::Grid& grid, const GasConfig& cfg, int j_mid, const RealView2& cs2, const RealView2& nu,
                    const RealView1& nu_mid);
 /// Hydrostatic density (eq. 33-37) on every cell from Sigma (ghosts included) and cs2.
-void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction, Real rho_floor, int j_ref,
-                             const RealView2& cs2, const RealView1& Sigma, const RealView2& rho);
+void gas_hydrostatic_density(const mesh::Grid& grid, const StellarGravity& gravity, Real column_fraction,
+                             Real rho_floor, int j_ref, const RealView2& cs2, const RealView1& Sigma,
+                             const RealView2& rho);
 
 }  // namespace mote::disc

@@ -32,9 +32,9 @@ struct RunSettings {
   double progress_interval = 2.0;  // wall seconds between progress lines
   std::string units = "dimensionless";
   std::string output_dir = "output";
-  double snapshot_dt = 0.0;          // 0: first and last snapshot only
-  long long checkpoint_every = 0;    // steps; 0: only at the end and on signals
-  double checkpoint_wall = 0.0;      // wall seconds; 0: off
+  double snapshot_dt = 0.0;        // 0: first and last snapshot only
+  long long checkpoint_every = 0;  // steps; 0: only at the end and on signals
+  double checkpoint_wall = 0.0;    // wall seconds; 0: off
   long long checkpoints_kept = 2;
   long long history_every = 1;
 

@@ -15,10 +15,10 @@ namespace mote::mesh {
 enum class BoundaryKind { Outflow, Zero, Closed };
 
 struct Boundaries {
-  BoundaryKind inner = BoundaryKind::Outflow;   // R_in
-  BoundaryKind outer = BoundaryKind::Outflow;   // R_out
-  BoundaryKind lower = BoundaryKind::Closed;    // theta_min
-  BoundaryKind upper = BoundaryKind::Outflow;   // theta_max
+  BoundaryKind inner = BoundaryKind::Outflow;  // R_in
+  BoundaryKind outer = BoundaryKind::Outflow;  // R_out
+  BoundaryKind lower = BoundaryKind::Closed;   // theta_min
+  BoundaryKind upper = BoundaryKind::Outflow;  // theta_max
 
   /// Deck table [boundaries]: inner, outer, lower, upper = "outflow" | "zero" | "closed".
   static void declare(core::DeckSchema& schema);
