@@ -209,9 +209,9 @@ TEST(SphDustWave, TenEqualBinsEqualOneSpecies) {
       w.K = 100.0;
       w.disc = disc;
       w.var = var;
-      const State s1 = run_state(w, 1.0);
+      const State s1 = run_state(w, 4.5);  // the A1 end time
       w.nspecies = 10;
-      const State s10 = run_state(w, 1.0);
+      const State s10 = run_state(w, 4.5);
       // v is a 1e-4 perturbation: compared relative to c_s = 1 (the round-off of P ~ 0.6 enters
       // v at 1e-16 / 1e-4 per step); also printed relative to the amplitude.
       const double de = max_rel(s1.eps, s10.eps, 0.5), dv = max_rel(s1.v, s10.v, 1.0), du = max_rel(s1.u, s10.u, 0.9);
