@@ -305,6 +305,8 @@ def main():
     ap.add_argument("--front-tol", type=float, default=0.05)
     ap.add_argument("--mass-tol", type=float, default=1e-5)
     ap.add_argument("--unfloored-tol", type=float, default=1e-12)
+    ap.add_argument("--projected-tol", type=float, default=None,
+                    help="bound on the dust mass the S projection removed, relative (A5: 1e-5 over 50 orbits)")
     ap.add_argument("--table2", action="store_true")
     ap.add_argument("--references", action="store_true")
     args = ap.parse_args()
@@ -339,8 +341,15 @@ def main():
     check(drift <= args.mass_tol, f"dust mass after the floor: relative drift {drift:.2e} (<= {args.mass_tol:g})")
     check(drift_u <= args.unfloored_tol, f"dust mass before the floor: relative drift {drift_u:.2e} (<= {args.unfloored_tol:g})")
     if "dust_projected" in hist.dtype.names:
-        print(f"dust mass the S-variable projection removed (the explicit update's O(dt^2) surplus): "
-              f"{hist['dust_projected'][-1] / m0:.2e} of the dust mass")
+        # The projection holds the S-variable dust mass by construction; what it removes is the scheme's
+        # own mass error, and that is what A5's 1e-5 bounds.
+        projected = abs(hist["dust_projected"][-1]) / m0
+        text = (f"dust mass the S-variable projection removed (the explicit update's O(dt^2) surplus): "
+                f"{projected:.2e} of the dust mass")
+        if args.projected_tol is None:
+            print("INFO " + text)
+        else:
+            check(projected <= args.projected_tol, f"{text} (<= {args.projected_tol:g})")
     if "tva_violations" in hist.dtype.names:
         print(f"particles where eps T_s exceeds the Courant time-step (terminal-velocity approximation fails, "
               f"PL15 eq. 18): at most {int(hist['tva_violations'].max())}, at the end {int(hist['tva_violations'][-1])}")
