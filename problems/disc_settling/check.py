@@ -30,7 +30,11 @@ Drift (--drift, C3), every cell with |Z| < zmax H (default 2): the dust v_R
 against the test-particle drift with the local gas state
     v_R = (v_gR - 2 St (v_K - v_gphi)) / (1 + St^2),  St = t_s v_K / R,
 v_K = (G M R^2 / r^3)^1/2; relative error scaled by max(|v_R,ref|) of the column
-species, pass if <= tol.
+species, pass if <= tol; and point by point, |v_R / v_R,ref - 1| <= tol in the
+cells where |v_R,ref| >= --point-floor (5 %) of the column maximum: the drift
+changes sign with height (the gas flows outwards near the mid-plane), so next to
+its zero no relative bound can hold (there the 100 um species reaches 7.5 % at a
+1 % floor, 1.4 % at 5 %; 82-95 % of the cells are kept at 5 %).
 
 Both: dust mass per species from the history file conserved to --mass-tol
 (1e-12; closed boundaries only) and the smallest density >= the floor (C6).
@@ -177,7 +181,8 @@ def drift(snap, args, checks):
     sizes = snap.data["dust_sizes"]
     results = []
     for s in range(species(snap)):
-        worst = 0.0
+        worst = worst_point = 0.0
+        cells = kept = 0
         for i in range(len(Rc)):
             om = np.sqrt(GM / Rc[i] ** 3)
             zh = Rc[i] * tan_tc / (np.sqrt(cs2[i, 0]) / om)
@@ -187,10 +192,20 @@ def drift(snap, args, checks):
             sel = np.abs(zh) < args.zmax
             dev = np.max(np.abs(vR[sel] - ref[sel])) / np.max(np.abs(ref[sel]))
             worst = max(worst, dev)
+            # Point by point (VALIDATION C3) where the reference is at least point_floor of the
+            # column's largest |v_R,ref|: the drift changes sign with height (outward gas flow
+            # near the mid-plane), and next to that zero any relative error is unbounded.
+            point = sel & (np.abs(ref) >= args.point_floor * np.max(np.abs(ref[sel])))
+            worst_point = max(worst_point, np.max(np.abs(vR[point] / ref[point] - 1)))
+            cells += int(sel.sum())
+            kept += int(point.sum())
             results.append((i, s, zh, vR, ref))
         checks.check(worst <= args.tol, f"C3 species {s} (a = {sizes[s] * 1e4:.0f} um): dust v_R within {worst:.3e} "
                                         f"of the test-particle drift for |Z| < {args.zmax} H (tol {args.tol}; "
                                         f"scaled by the column max)")
+        checks.check(worst_point <= args.tol, f"C3 species {s}: pointwise |v_R / v_R,ref - 1| <= {worst_point:.3e} "
+                                              f"(tol {args.tol}) in the {kept} of {cells} cells with |Z| < {args.zmax} H "
+                                              f"where |v_R,ref| >= {args.point_floor:g} of the column max")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -235,6 +250,8 @@ def main():
     p.add_argument("--plot")
     p.add_argument("--zmax", type=float)
     p.add_argument("--tol", type=float, default=0.05)
+    p.add_argument("--point-floor", type=float, default=0.05,
+                   help="C3 pointwise check where |v_R,ref| >= this fraction of the column max (the drift crosses zero)")
     p.add_argument("--cut", type=float, default=1e-4)
     p.add_argument("--mass-tol", type=float, default=1e-12)
     args = p.parse_args()
