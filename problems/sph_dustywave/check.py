@@ -37,7 +37,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
-from mote.verdict import Verdict  # noqa: E402
+from mote.verdict import Verdict, sph_conservation  # noqa: E402
 
 
 def evolve(M, y0, t):
@@ -102,24 +102,6 @@ def compare(run_dir):
     return t, K, gas_pdv, x, num, exact, err, gap
 
 
-def conservation(v, run_dir, energy_tol, momentum_tol):
-    """VALIDATION A7 from history.txt: mass to 1e-12, x momentum to momentum_tol of the largest sum m|v|,
-    energy to energy_tol."""
-    path = os.path.join(run_dir, "history.txt")
-    if not os.path.exists(path):
-        v.check(False, f"conservation: no {path}")
-        return
-    h = mote.read_history(path)
-    m0 = h["mass"][0]
-    # A7: momentum relative to the run's momentum scale, the largest sum m |v|.
-    p_scale = max(h["momentum_abs"]) if "momentum_abs" in h.dtype.names else m0
-    dm, dp = abs(h["mass"][-1] - m0) / m0, abs(h["momentum_x"][-1] - h["momentum_x"][0]) / p_scale
-    de = abs(h["energy"][-1] - h["energy"][0]) / abs(h["energy"][0])
-    v.check(dm <= 1e-12, f"mass conserved: relative drift {dm:.1e} <= 1e-12")
-    v.check(dp <= momentum_tol, f"momentum conserved: drift {dp:.1e} <= {momentum_tol:g} of the largest sum m|v|")
-    v.check(de <= energy_tol, f"total energy conserved: relative drift {de:.1e} <= {energy_tol:g}")
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -156,7 +138,7 @@ def main():
     else:
         v.check(err[0] <= tol, f"K = {K:g}: L2_rel(v_g) = {err[0]:.3e} <= {tol:.3g}")
         v.check(err[1] <= tol, f"K = {K:g}: L2_rel(v_d) = {err[1]:.3e} <= {tol:.3g}")
-    conservation(v, args.run_dir, args.energy_tol, args.momentum_tol)
+    sph_conservation(v, args.run_dir, args.energy_tol, args.momentum_tol)
     return v.finish()
 
 

@@ -20,7 +20,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
-from mote.verdict import Verdict  # noqa: E402
+from mote.verdict import Verdict, sph_conservation  # noqa: E402
 from mote.shock_tube import exact_riemann, plot_tube  # noqa: E402
 
 
@@ -43,24 +43,6 @@ def compare(run_dir):
     return t, x, rho, vx, P, ex, inside, err
 
 
-def conservation(v, run_dir, energy_tol, mass=True):
-    """From history.txt: mass (VALIDATION A7) and x momentum to 1e-12 of the largest sum m|v|, energy to energy_tol."""
-    path = os.path.join(run_dir, "history.txt")
-    if not os.path.exists(path):
-        v.check(False, f"conservation: no {path}")
-        return
-    h = mote.read_history(path)
-    m0 = h["mass"][0]
-    # A7: momentum relative to the run's momentum scale, the largest sum m |v|.
-    p_scale = max(h["momentum_abs"]) if "momentum_abs" in h.dtype.names else m0
-    dm, dp = abs(h["mass"][-1] - m0) / m0, abs(h["momentum_x"][-1] - h["momentum_x"][0]) / p_scale
-    de = abs(h["energy"][-1] - h["energy"][0]) / abs(h["energy"][0])
-    if mass:
-        v.check(dm <= 1e-12, f"mass conserved: relative drift {dm:.1e} <= 1e-12")
-    v.check(dp <= 1e-12, f"momentum conserved: drift {dp:.1e} <= 1e-12 of the largest sum m|v|")
-    v.check(de <= energy_tol, f"total energy conserved: relative drift {de:.1e} <= {energy_tol:g}")
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -75,7 +57,7 @@ def main():
         plot_tube(args.plot, x, profiles, f"Sod shock tube, t = {t:g}, mean density error {err:.2e}")
     v = Verdict()
     v.check(err <= args.max_error, f"mean |rho - rho_exact| over [-0.5, 0.5] = {err:.3e} <= {args.max_error:.1e}")
-    conservation(v, args.run_dir, args.energy_tol, mass=False)
+    sph_conservation(v, args.run_dir, args.energy_tol, mass=False)
     return v.finish()
 
 
