@@ -1,0 +1,142 @@
+// Sparse linear solves A x = b on the device: Jacobi (row) scaling, an ILU(k)
+// preconditioner (Kokkos Kernels spiluk, applied with sptrsv) and BiCGStab
+// (van der Vorst 1992, right-preconditioned) written on KokkosSparse::spmv
+// and KokkosBlas dot products. The solver of the FLD system in RBO24 sec. 4.1
+// (eq. 48-49: "incomplete-LU preconditioning and BiCGStab").
+//
+// Convergence (RBO24 sec. 4.1): the largest fractional residual over rows,
+//   max_i |r_i| / max(|b_i|, |(A x)_i|) <= tolerance,
+// and, as a guard for rows where both are ~0, ||r||_2 <= tolerance ||b||_2;
+// both are checked again on the true residual b - A x before a solve is
+// accepted. Row scaling leaves the fractional residual unchanged.
+//
+// Set up once, solve many: the pattern, work vectors and each ILU level's
+// symbolic factorisation are made once; a solve runs the numeric phases on the
+// current matrix values. The scalars of the iteration stay on the device; one
+// small copy per iteration brings the convergence measures to the host.
+//
+// A matrix or right-hand side with a non-finite value is refused before any
+// iteration. When a solve fails (iteration limit, breakdown omega = 0, a
+// non-finite residual or ILU pivot; Kokkos Kernels itself replaces an exactly
+// zero pivot), the next rung of a fallback ladder is tried from the same
+// initial guess: the configured preconditioner, then none, ILU(0), ILU(k+1) ..
+// ILU(max_fill_level). If every rung fails, x is left as it came in and
+// SolveFailure reports each rung's residual history and the worst row.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mote/linalg/crs_pattern.hpp"
+
+namespace mote::linalg {
+
+/// A preconditioner choice: fill_level < 0 is none, k >= 0 is ILU(k).
+struct Preconditioning {
+  int fill_level = 0;
+  bool is_ilu() const { return fill_level >= 0; }
+  std::string name() const;
+  bool operator==(const Preconditioning& other) const { return fill_level == other.fill_level; }
+};
+
+struct SolverSettings {
+  Real tolerance = 1e-4;
+  int max_iterations = 500;
+  bool jacobi_scaling = true;
+  Preconditioning preconditioning{0};
+  bool fallback = true;
+  int max_fill_level = 2;
+  /// Throws std::invalid_argument naming the bad setting.
+  void validate() const;
+  /// The rungs tried in order (the configured one first, no repeats).
+  std::vector<Preconditioning> ladder() const;
+};
+
+/// One rung's run of BiCGStab.
+struct SolveAttempt {
+  Preconditioning preconditioning;
+  bool converged = false;
+  int iterations = 0;
+  int restarts = 0;           // rho -> 0 restarts and true-residual restarts
+  int worst_row = -1;         // row of the largest fractional residual when it failed
+  Real residual = 0.0;        // final max fractional residual
+  std::string stop_reason;    // "converged", "iteration limit", "breakdown: omega = 0", ...
+  std::vector<Real> history;  // max fractional residual after each iteration (entry 0: initial)
+  double seconds = 0.0;
+};
+
+struct SolveReport {
+  bool converged = false;
+  std::vector<SolveAttempt> attempts;
+  const SolveAttempt& last() const { return attempts.back(); }
+  int total_iterations() const;
+  /// One line: rung, iterations, residual, time (for the run log).
+  std::string summary() const;
+};
+
+/// Thrown by LinearSolver::solve when every rung failed; x is unchanged.
+class SolveFailure : public std::runtime_error {
+ public:
+  SolveFailure(const std::string& message, SolveReport report);
+  const SolveReport& report() const { return report_; }
+
+ private:
+  SolveReport report_;
+};
+
+/// Names a row for messages (e.g. "band 3, cell (12, 40)").
+using RowDescriber = std::function<std::string(int row)>;
+
+/// Fractional residual of one row (RBO24 sec. 4.1); 0 when r = b = A x = 0.
+KOKKOS_INLINE_FUNCTION Real fractional_residual(Real r, Real b) {
+  const Real ax = b - r;
+  const Real scale = math::fmax(math::fabs(b), math::fabs(ax));
+  if (scale > 0.0) return math::fabs(r) / scale;
+  return r == 0.0 ? 0.0 : static_cast<Real>(HUGE_VAL);
+}
+
+class IluFactors;
+namespace detail {
+struct BicgstabWorkspace;
+}
+
+class LinearSolver {
+ public:
+  LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings);
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  /// The matrix whose values the caller writes before each solve.
+  const CrsMatrix& matrix() const { return matrix_; }
+  const CrsPattern& pattern() const { return pattern_; }
+  const SolverSettings& settings() const { return settings_; }
+
+  /// Solves matrix() x = b with x as the initial guess. Throws SolveFailure
+  /// (x unchanged) when every rung of the ladder fails.
+  SolveReport solve(const Vector& b, const Vector& x, const RowDescriber& describe = {});
+  /// As solve, but returns the failed report instead of throwing.
+  SolveReport try_solve(const Vector& b, const Vector& x);
+
+ private:
+  void scale_system(const Vector& b);
+  SolveAttempt attempt(const Preconditioning& preconditioning, const Vector& x);
+  IluFactors* factors_for(int fill_level);
+  std::string failure_message(const SolveReport& report, const RowDescriber& describe) const;
+
+  std::string name_;
+  CrsPattern pattern_;
+  SolverSettings settings_;
+  CrsMatrix matrix_;  // the caller's values
+  CrsMatrix scaled_;  // D^-1 A (same graph)
+  Vector b_scaled_, x_initial_;
+  std::unique_ptr<detail::BicgstabWorkspace> work_;
+  std::map<int, std::unique_ptr<IluFactors>> factors_;
+};
+
+}  // namespace mote::linalg

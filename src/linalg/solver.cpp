@@ -1,0 +1,390 @@
+// Jacobi scaling, ILU(k) and right-preconditioned BiCGStab (van der Vorst
+// 1992) with the RBO24 sec. 4.1 convergence test and a fallback ladder; see
+// solver.hpp.
+#include "mote/linalg/solver.hpp"
+
+#include <KokkosBlas1_dot.hpp>
+#include <KokkosBlas1_nrm2.hpp>
+#include <KokkosSparse_spmv.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "mote/linalg/ilu.hpp"
+
+namespace mote::linalg {
+
+using Scalar = Kokkos::View<Real, MemSpace>;
+
+std::string Preconditioning::name() const { return is_ilu() ? "ILU(" + std::to_string(fill_level) + ")" : "none"; }
+
+void SolverSettings::validate() const {
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw std::invalid_argument("linear solver tolerance must lie in (0, 1), got " + std::to_string(tolerance));
+  if (max_iterations < 1)
+    throw std::invalid_argument("linear solver max_iterations must be >= 1, got " + std::to_string(max_iterations));
+  if (preconditioning.fill_level < -1)
+    throw std::invalid_argument("ILU fill level must be >= 0 (or -1 for none), got " +
+                                std::to_string(preconditioning.fill_level));
+  if (max_fill_level < 0)
+    throw std::invalid_argument("max_fill_level must be >= 0, got " + std::to_string(max_fill_level));
+}
+
+std::vector<Preconditioning> SolverSettings::ladder() const {
+  std::vector<Preconditioning> rungs{preconditioning};
+  if (!fallback) return rungs;
+  auto add = [&](int k) {
+    if (std::find(rungs.begin(), rungs.end(), Preconditioning{k}) == rungs.end()) rungs.push_back({k});
+  };
+  add(-1);
+  add(0);
+  for (int k = std::max(preconditioning.fill_level + 1, 1); k <= max_fill_level; ++k) add(k);
+  return rungs;
+}
+
+int SolveReport::total_iterations() const {
+  int total = 0;
+  for (const auto& a : attempts) total += a.iterations;
+  return total;
+}
+
+std::string SolveReport::summary() const {
+  std::ostringstream out;
+  for (std::size_t i = 0; i < attempts.size(); ++i) {
+    const auto& a = attempts[i];
+    out << (i ? "; " : "") << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
+        << " iterations, residual " << a.residual << ", " << a.seconds << " s";
+  }
+  return out.str();
+}
+
+SolveFailure::SolveFailure(const std::string& message, SolveReport report)
+    : std::runtime_error(message), report_(std::move(report)) {}
+
+namespace detail {
+
+/// Work vectors and the device-resident scalars of the iteration.
+struct BicgstabWorkspace {
+  Vector r, r_hat, p, v, s, t, p_hat, s_hat;
+  Scalar rho, rho_old, alpha, omega, rv, ts, tt, rr, rho_next, rhat2, res_max;
+  View<Real*> packed;
+  HostView<Real*> packed_host;
+  BicgstabWorkspace(const std::string& name, int n)
+      : r(name + "::r", n),
+        r_hat(name + "::r_hat", n),
+        p(name + "::p", n),
+        v(name + "::v", n),
+        s(name + "::s", n),
+        t(name + "::t", n),
+        p_hat(name + "::p_hat", n),
+        s_hat(name + "::s_hat", n),
+        rho("rho"),
+        rho_old("rho_old"),
+        alpha("alpha"),
+        omega("omega"),
+        rv("rv"),
+        ts("ts"),
+        tt("tt"),
+        rr("rr"),
+        rho_next("rho_next"),
+        rhat2("rhat2"),
+        res_max("res_max"),
+        packed(name + "::packed", 5),
+        packed_host(Kokkos::create_mirror_view(packed)) {}
+};
+
+}  // namespace detail
+
+namespace {
+
+using Work = detail::BicgstabWorkspace;
+
+/// What the host learns after each iteration, in one copy.
+struct Measures {
+  Real residual, rr, rho_next, omega, rhat2;
+};
+
+/// r = b - A x
+void true_residual(const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r) {
+  Kokkos::deep_copy(r, b);
+  KokkosSparse::spmv("N", -1.0, A, x, 1.0, r);
+}
+
+/// A fresh Krylov space from the current r: r_hat = r, p = v = 0,
+/// rho = rhat2 = (r, r), rho_old = alpha = omega = 1.
+void restart(Work& w) {
+  KokkosBlas::dot(w.rr, w.r, w.r);
+  const Vector r = w.r, r_hat = w.r_hat, p = w.p, v = w.v;
+  const Scalar rr = w.rr, rho = w.rho, rhat2 = w.rhat2, rho_old = w.rho_old, alpha = w.alpha, omega = w.omega;
+  par_for(
+      "linalg::bicgstab_restart", 0, static_cast<int>(r.extent(0)), KOKKOS_LAMBDA(int i) {
+        r_hat(i) = r(i);
+        p(i) = 0.0;
+        v(i) = 0.0;
+        if (i == 0) {
+          rho() = rr();
+          rhat2() = rr();
+          rho_old() = alpha() = omega() = 1.0;
+        }
+      });
+}
+
+/// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
+/// for the next iteration.
+Measures measure(Work& w, const Vector& b) {
+  const Vector r = w.r;
+  Kokkos::parallel_reduce(
+      "linalg::bicgstab_fractional_residual", Kokkos::RangePolicy<ExecSpace>(0, static_cast<int>(r.extent(0))),
+      KOKKOS_LAMBDA(int i, Real& m) {
+        const Real f = fractional_residual(r(i), b(i));
+        m = math::fmax(m, math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL));
+      },
+      Kokkos::Max<Real, MemSpace>(w.res_max));
+  KokkosBlas::dot(w.rr, w.r, w.r);
+  KokkosBlas::dot(w.rho_next, w.r_hat, w.r);
+  const View<Real*> packed = w.packed;
+  const Scalar res_max = w.res_max, rr = w.rr, rho_next = w.rho_next, omega = w.omega, rhat2 = w.rhat2, rho = w.rho;
+  par_for(
+      "linalg::bicgstab_pack", 0, 1, KOKKOS_LAMBDA(int) {
+        packed(0) = res_max();
+        packed(1) = rr();
+        packed(2) = rho_next();
+        packed(3) = omega();
+        packed(4) = rhat2();
+        rho() = rho_next();
+      });
+  Kokkos::deep_copy(w.packed_host, w.packed);
+  const auto& h = w.packed_host;
+  return {h(0), h(1), h(2), h(3), h(4)};
+}
+
+/// p = r + beta (p - omega v), beta = (rho / rho_old) (alpha / omega).
+void search_direction(Work& w) {
+  const Vector p = w.p, r = w.r, v = w.v;
+  const Scalar rho = w.rho, rho_old = w.rho_old, alpha = w.alpha, omega = w.omega;
+  par_for(
+      "linalg::bicgstab_direction", 0, static_cast<int>(p.extent(0)), KOKKOS_LAMBDA(int i) {
+        const Real beta = (rho() / rho_old()) * (alpha() / omega());
+        p(i) = r(i) + beta * (p(i) - omega() * v(i));
+      });
+}
+
+/// alpha = rho / (r_hat, v); s = r - alpha v.
+void half_step(Work& w) {
+  KokkosBlas::dot(w.rv, w.r_hat, w.v);
+  const Vector s = w.s, r = w.r, v = w.v;
+  const Scalar rho = w.rho, rv = w.rv, alpha = w.alpha;
+  par_for(
+      "linalg::bicgstab_half_step", 0, static_cast<int>(s.extent(0)), KOKKOS_LAMBDA(int i) {
+        const Real a = rv() != 0.0 ? rho() / rv() : 0.0;
+        s(i) = r(i) - a * v(i);
+        if (i == 0) alpha() = a;
+      });
+}
+
+/// omega = (t, s) / (t, t); x += alpha p_hat + omega s_hat; r = s - omega t.
+void full_step(Work& w, const Vector& p_hat, const Vector& s_hat, const Vector& x) {
+  KokkosBlas::dot(w.ts, w.t, w.s);
+  KokkosBlas::dot(w.tt, w.t, w.t);
+  const Vector r = w.r, s = w.s, t = w.t;
+  const Scalar alpha = w.alpha, omega = w.omega, ts = w.ts, tt = w.tt, rho = w.rho, rho_old = w.rho_old;
+  par_for(
+      "linalg::bicgstab_full_step", 0, static_cast<int>(x.extent(0)), KOKKOS_LAMBDA(int i) {
+        const Real om = tt() > 0.0 ? ts() / tt() : 0.0;
+        x(i) += alpha() * p_hat(i) + om * s_hat(i);
+        r(i) = s(i) - om * t(i);
+        if (i == 0) {
+          omega() = om;
+          rho_old() = rho();
+        }
+      });
+}
+
+/// Row of the largest fractional residual of r.
+int worst_row(const Vector& r, const Vector& b) {
+  using Loc = Kokkos::MaxLoc<Real, int>;
+  Loc::value_type worst;
+  par_reduce(
+      "linalg::bicgstab_worst_row", 0, static_cast<int>(r.extent(0)),
+      KOKKOS_LAMBDA(int i, Loc::value_type& m) {
+        const Real f = fractional_residual(r(i), b(i));
+        const Real value = math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL);
+        if (value > m.val) {
+          m.val = value;
+          m.loc = i;
+        }
+      },
+      Loc(worst));
+  return worst.loc;
+}
+
+/// D^-1 A and D^-1 b with D the diagonal (rows with a zero diagonal unscaled).
+void jacobi_scale(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, bool scale, const CrsMatrix& DA,
+                  const Vector& Db) {
+  const RowMap row_map = pattern.row_map, diagonal = pattern.diagonal;
+  const auto values = A.values, scaled = DA.values;
+  par_for(
+      "linalg::jacobi_scale", 0, pattern.n_rows, KOKKOS_LAMBDA(int row) {
+        const Real d = values(diagonal(row));
+        const Real inv = (scale && d != 0.0) ? 1.0 / d : 1.0;
+        for (Offset k = row_map(row); k < row_map(row + 1); ++k) scaled(k) = values(k) * inv;
+        Db(row) = b(row) * inv;
+      });
+}
+
+/// First row of D^-1 A or D^-1 b holding a non-finite value; n when none.
+int first_non_finite_row(const CrsPattern& pattern, const CrsMatrix& DA, const Vector& Db) {
+  const RowMap row_map = pattern.row_map;
+  const auto values = DA.values;
+  int bad = pattern.n_rows;
+  par_reduce(
+      "linalg::non_finite_rows", 0, pattern.n_rows,
+      KOKKOS_LAMBDA(int row, int& first) {
+        bool finite = math::isfinite(Db(row));
+        for (Offset k = row_map(row); k < row_map(row + 1); ++k) finite = finite && math::isfinite(values(k));
+        if (!finite && row < first) first = row;
+      },
+      Kokkos::Min<int>(bad));
+  return bad;
+}
+
+bool accepted(const Measures& m, Real b_norm, Real tolerance) {
+  return m.residual <= tolerance && std::sqrt(m.rr) <= tolerance * b_norm;
+}
+
+}  // namespace
+
+LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings)
+    : name_(name),
+      pattern_(std::move(pattern)),
+      settings_(settings),
+      matrix_(make_matrix(name + "::A", pattern_)),
+      scaled_(make_matrix(name + "::DA", pattern_)),
+      b_scaled_(name + "::Db", pattern_.n_rows),
+      x_initial_(name + "::x0", pattern_.n_rows),
+      work_(std::make_unique<detail::BicgstabWorkspace>(name, pattern_.n_rows)) {
+  settings_.validate();
+}
+
+LinearSolver::~LinearSolver() = default;
+
+IluFactors* LinearSolver::factors_for(int fill_level) {
+  auto& slot = factors_[fill_level];
+  if (!slot) slot = std::make_unique<IluFactors>(name_ + "::ilu" + std::to_string(fill_level), pattern_, fill_level);
+  return slot.get();
+}
+
+SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const Vector& x) {
+  const auto start = std::chrono::steady_clock::now();
+  SolveAttempt out;
+  out.preconditioning = preconditioning;
+  auto finish = [&](const std::string& reason, bool converged) {
+    out.stop_reason = reason;
+    out.converged = converged;
+    if (!converged) out.worst_row = worst_row(work_->r, b_scaled_);
+    Kokkos::fence();
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  };
+  IluFactors* ilu = preconditioning.is_ilu() ? factors_for(preconditioning.fill_level) : nullptr;
+  if (ilu) {
+    const int bad = ilu->factorise(scaled_);
+    if (bad >= 0) {
+      out.worst_row = bad;
+      out.stop_reason = "zero or non-finite pivot in row " + std::to_string(bad);
+      return out;
+    }
+  }
+  Work& w = *work_;
+  const Real b_norm = KokkosBlas::nrm2(b_scaled_);
+  const Real tol = settings_.tolerance;
+  const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
+
+  true_residual(scaled_, b_scaled_, x, w.r);
+  restart(w);
+  Measures m = measure(w, b_scaled_);
+  out.history.push_back(m.residual);
+  out.residual = m.residual;
+  if (accepted(m, b_norm, tol)) return finish("converged", true);
+
+  while (out.iterations < settings_.max_iterations) {
+    ++out.iterations;
+    search_direction(w);
+    if (ilu) ilu->apply(w.p, p_hat);
+    KokkosSparse::spmv("N", 1.0, scaled_, p_hat, 0.0, w.v);
+    half_step(w);
+    if (ilu) ilu->apply(w.s, s_hat);
+    KokkosSparse::spmv("N", 1.0, scaled_, s_hat, 0.0, w.t);
+    full_step(w, p_hat, s_hat, x);
+    m = measure(w, b_scaled_);
+    out.history.push_back(m.residual);
+    out.residual = m.residual;
+    if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
+    if (accepted(m, b_norm, tol)) {
+      true_residual(scaled_, b_scaled_, x, w.r);
+      m = measure(w, b_scaled_);
+      out.residual = m.residual;
+      if (accepted(m, b_norm, tol)) return finish("converged", true);
+      ++out.restarts;  // the recursive residual drifted from b - A x
+      restart(w);
+      continue;
+    }
+    if (m.omega == 0.0) return finish("breakdown: omega = 0", false);
+    if (std::fabs(m.rho_next) <= 1e-14 * std::sqrt(m.rhat2 * m.rr)) {
+      ++out.restarts;  // (r_hat, r) -> 0: the shadow residual is exhausted
+      restart(w);
+    }
+  }
+  return finish("iteration limit", false);
+}
+
+SolveReport LinearSolver::try_solve(const Vector& b, const Vector& x) {
+  jacobi_scale(pattern_, matrix_, b, settings_.jacobi_scaling, scaled_, b_scaled_);
+  SolveReport report;
+  const int bad = first_non_finite_row(pattern_, scaled_, b_scaled_);
+  if (bad < pattern_.n_rows) {
+    SolveAttempt refused;
+    refused.preconditioning = settings_.preconditioning;
+    refused.worst_row = bad;
+    refused.stop_reason = "non-finite matrix entry or right-hand side in row " + std::to_string(bad);
+    report.attempts.push_back(refused);
+    return report;
+  }
+  Kokkos::deep_copy(x_initial_, x);
+  for (const auto& rung : settings_.ladder()) {
+    if (!report.attempts.empty()) Kokkos::deep_copy(x, x_initial_);
+    report.attempts.push_back(attempt(rung, x));
+    if (report.attempts.back().converged) {
+      report.converged = true;
+      return report;
+    }
+  }
+  Kokkos::deep_copy(x, x_initial_);
+  return report;
+}
+
+SolveReport LinearSolver::solve(const Vector& b, const Vector& x, const RowDescriber& describe) {
+  SolveReport report = try_solve(b, x);
+  if (!report.converged) throw SolveFailure(failure_message(report, describe), report);
+  return report;
+}
+
+std::string LinearSolver::failure_message(const SolveReport& report, const RowDescriber& describe) const {
+  std::ostringstream out;
+  out << name_ << ": the linear solve failed on every rung (tolerance " << settings_.tolerance
+      << "); the previous solution is kept.";
+  for (const auto& a : report.attempts) {
+    out << "\n  " << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
+        << " iterations, fractional residual " << a.residual;
+    if (a.worst_row >= 0)
+      out << " (worst row " << a.worst_row << (describe ? ", " + describe(a.worst_row) : std::string()) << ")";
+    const std::size_t shown = std::min<std::size_t>(a.history.size(), 8);
+    out << "; residual history";
+    for (std::size_t i = 0; i < shown; ++i) out << " " << a.history[i];
+    if (a.history.size() > shown) out << " ... " << a.history.back();
+  }
+  return out.str();
+}
+
+}  // namespace mote::linalg

@@ -1,0 +1,429 @@
+// D1 (VALIDATION.md): ILU(k)-preconditioned BiCGStab against a direct dense
+// solve. Systems: 2D convection-diffusion (5-point, central convection, cell
+// Peclet number up to 0.8, non-symmetric) and a near-skew tridiagonal matrix
+// on which plain BiCGStab fails (the fallback ladder). Each solve is checked on
+// the host with the dense matrix: the largest fractional residual of the
+// returned x is <= the requested tolerance and max|x - x_direct| / max|x_direct|
+// <= 10 x tolerance; iteration counts are printed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include "mote/linalg/crs_pattern.hpp"
+#include "mote/linalg/solver.hpp"
+
+namespace {
+
+using namespace mote;
+using linalg::CrsPattern;
+using linalg::LinearSolver;
+using linalg::Offset;
+using linalg::Ordinal;
+using linalg::SolverSettings;
+using Dense = std::vector<std::vector<double>>;
+
+/// Pattern of the 5-point stencil on an n x n grid, row = i + n j.
+CrsPattern five_point_pattern(int n) {
+  return linalg::build_pattern(
+      "test::five_point", n * n,
+      KOKKOS_LAMBDA(int row) {
+        const int i = row % n, j = row / n;
+        return 1 + (i > 0) + (i < n - 1) + (j > 0) + (j < n - 1);
+      },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) {
+        const int i = row % n, j = row / n;
+        int k = 0;
+        if (j > 0) cols[k++] = row - n;
+        if (i > 0) cols[k++] = row - 1;
+        cols[k++] = row;
+        if (i < n - 1) cols[k++] = row + 1;
+        if (j < n - 1) cols[k++] = row + n;
+      });
+}
+
+/// -Laplace(u) + c . grad(u) on the unit square (Dirichlet, h = 1 / (n + 1)),
+/// times `scale`.
+void convection_diffusion_values(const LinearSolver& solver, int n, double cx, double cy, double scale) {
+  const auto A = solver.matrix();
+  const auto row_map = A.graph.row_map;
+  const auto cols = A.graph.entries;
+  const auto values = A.values;
+  const double h = 1.0 / (n + 1);
+  par_for(
+      "test::convection_diffusion", 0, n * n, KOKKOS_LAMBDA(int row) {
+        for (Offset k = row_map(row); k < row_map(row + 1); ++k) {
+          const int c = cols(k);
+          double a = 4.0 / (h * h);
+          if (c == row - 1) a = -1.0 / (h * h) - cx / (2 * h);
+          if (c == row + 1) a = -1.0 / (h * h) + cx / (2 * h);
+          if (c == row - n) a = -1.0 / (h * h) - cy / (2 * h);
+          if (c == row + n) a = -1.0 / (h * h) + cy / (2 * h);
+          values(k) = scale * a;
+        }
+      });
+}
+
+Dense to_dense(const linalg::CrsMatrix& A) {
+  const int n = A.numRows();
+  auto row_map = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.row_map);
+  auto cols = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.entries);
+  auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), A.values);
+  Dense dense(n, std::vector<double>(n, 0.0));
+  for (int r = 0; r < n; ++r)
+    for (Offset k = row_map(r); k < row_map(r + 1); ++k) dense[r][cols(k)] = values(k);
+  return dense;
+}
+
+/// Gaussian elimination with partial pivoting.
+std::vector<double> dense_solve(Dense A, std::vector<double> b) {
+  const int n = static_cast<int>(b.size());
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::fabs(A[r][c]) > std::fabs(A[p][c])) p = r;
+    std::swap(A[c], A[p]);
+    std::swap(b[c], b[p]);
+    for (int r = c + 1; r < n; ++r) {
+      const double f = A[r][c] / A[c][c];
+      if (f == 0.0) continue;
+      for (int k = c; k < n; ++k) A[r][k] -= f * A[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  std::vector<double> x(n);
+  for (int r = n - 1; r >= 0; --r) {
+    double s = b[r];
+    for (int k = r + 1; k < n; ++k) s -= A[r][k] * x[k];
+    x[r] = s / A[r][r];
+  }
+  return x;
+}
+
+std::vector<double> to_host(const linalg::Vector& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), v);
+  return std::vector<double>(h.data(), h.data() + h.extent(0));
+}
+
+linalg::Vector from_host(const std::vector<double>& v) {
+  linalg::Vector d("test::vector", v.size());
+  auto h = Kokkos::create_mirror_view(d);
+  for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
+  Kokkos::deep_copy(d, h);
+  return d;
+}
+
+/// A smooth right-hand side with a sign change: b_r = 1 + sin(0.37 r) + 0.1 r / n.
+std::vector<double> rhs(int n) {
+  std::vector<double> b(n);
+  for (int r = 0; r < n; ++r) b[r] = 1.0 + std::sin(0.37 * r) + 0.1 * r / n;
+  return b;
+}
+
+double max_fractional_residual(const Dense& A, const std::vector<double>& x, const std::vector<double>& b) {
+  double worst = 0.0;
+  for (std::size_t r = 0; r < b.size(); ++r) {
+    double ax = 0.0;
+    for (std::size_t k = 0; k < b.size(); ++k) ax += A[r][k] * x[k];
+    worst = std::max(worst, std::fabs(b[r] - ax) / std::max(std::fabs(b[r]), std::fabs(ax)));
+  }
+  return worst;
+}
+
+double relative_error(const std::vector<double>& x, const std::vector<double>& ref) {
+  double err = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    err = std::max(err, std::fabs(x[i] - ref[i]));
+    scale = std::max(scale, std::fabs(ref[i]));
+  }
+  return err / scale;
+}
+
+struct Case {
+  int fill_level;
+  double tolerance;
+};
+void PrintTo(const Case& c, std::ostream* os) { *os << "fill level " << c.fill_level << ", tolerance " << c.tolerance; }
+
+class ConvectionDiffusion : public ::testing::TestWithParam<Case> {};
+
+TEST_P(ConvectionDiffusion, MatchesDirectSolveWithinTenTimesTolerance) {
+  const auto [fill_level, tolerance] = GetParam();
+  const int n = 20;  // 400 unknowns; cell Peclet number |c| h / 2 = 0.48 and 0.24
+  SolverSettings settings;
+  settings.tolerance = tolerance;
+  settings.preconditioning = {fill_level};
+  settings.fallback = false;
+  LinearSolver solver("test::cd", five_point_pattern(n), settings);
+  convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+  const auto b = rhs(n * n);
+  const auto A = to_dense(solver.matrix());
+  const auto x_direct = dense_solve(A, b);
+
+  const linalg::Vector x("x", n * n);
+  const auto report = solver.solve(from_host(b), x);
+  const auto xh = to_host(x);
+  const double residual = max_fractional_residual(A, xh, b);
+  const double error = relative_error(xh, x_direct);
+  std::cout << "D1 convection-diffusion 20x20, " << report.last().preconditioning.name() << ", tol " << tolerance
+            << ": " << report.last().iterations << " iterations, residual " << residual << ", error " << error << "\n";
+  ASSERT_TRUE(report.converged);
+  EXPECT_EQ(report.attempts.size(), 1u);
+  EXPECT_LE(residual, tolerance);
+  EXPECT_LE(error, 10.0 * tolerance);
+  EXPECT_LE(report.last().residual, tolerance);  // the solver's own measure of b - A x
+}
+
+INSTANTIATE_TEST_SUITE_P(Preconditioners, ConvectionDiffusion,
+                         ::testing::Values(Case{-1, 1e-4}, Case{0, 1e-4}, Case{1, 1e-4}, Case{2, 1e-4}, Case{-1, 1e-8},
+                                           Case{0, 1e-8}, Case{2, 1e-10}));
+
+TEST(LinearSolver, IluCutsIterationsAndHigherFillCutsMore) {
+  const int n = 20;
+  std::vector<int> iterations;
+  for (int k : {-1, 0, 2}) {
+    SolverSettings settings;
+    settings.tolerance = 1e-8;
+    settings.preconditioning = {k};
+    settings.fallback = false;
+    LinearSolver solver("test::cd", five_point_pattern(n), settings);
+    convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+    const linalg::Vector x("x", n * n);
+    iterations.push_back(solver.solve(from_host(rhs(n * n)), x).last().iterations);
+  }
+  std::cout << "iterations to 1e-8: none " << iterations[0] << ", ILU(0) " << iterations[1] << ", ILU(2) "
+            << iterations[2] << "\n";
+  EXPECT_LT(iterations[1], iterations[0]);
+  EXPECT_LT(iterations[2], iterations[1]);
+}
+
+TEST(LinearSolver, SetUpOnceSolveManyWithNewValues) {
+  const int n = 12;
+  SolverSettings settings;
+  settings.tolerance = 1e-9;
+  LinearSolver solver("test::cd", five_point_pattern(n), settings);
+  const auto b = from_host(rhs(n * n));
+  convection_diffusion_values(solver, n, 5.0, 5.0, 1.0);
+  const linalg::Vector x1("x1", n * n), x2("x2", n * n);
+  solver.solve(b, x1);
+  convection_diffusion_values(solver, n, 5.0, 5.0, 4.0);  // A -> 4 A: x -> x / 4
+  const auto report = solver.solve(b, x2);
+  const auto h1 = to_host(x1), h2 = to_host(x2);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < h1.size(); ++i) worst = std::max(worst, std::fabs(4.0 * h2[i] / h1[i] - 1.0));
+  EXPECT_LT(worst, 1e-7);
+}
+
+TEST(LinearSolver, ExactInitialGuessTakesNoIteration) {
+  const int n = 10;
+  SolverSettings settings;
+  settings.tolerance = 1e-6;
+  LinearSolver solver("test::cd", five_point_pattern(n), settings);
+  convection_diffusion_values(solver, n, 0.0, 0.0, 1.0);
+  const auto A = to_dense(solver.matrix());
+  const auto b = rhs(n * n);
+  const auto x = from_host(dense_solve(A, b));
+  const auto report = solver.solve(from_host(b), x);
+  EXPECT_TRUE(report.converged);
+  EXPECT_EQ(report.last().iterations, 0);
+}
+
+/// Tridiagonal with diagonal eps and off-diagonals -1 (left), +1 (right):
+/// nearly skew-symmetric, so (t, s) ~ eps |s|^2 and unpreconditioned BiCGStab
+/// stalls; ILU(0) of a tridiagonal matrix is its exact LU factorisation.
+CrsPattern tridiagonal_pattern(int n) {
+  return linalg::build_pattern(
+      "test::tridiagonal", n, KOKKOS_LAMBDA(int row) { return 1 + (row > 0) + (row < n - 1); },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) {
+        int k = 0;
+        if (row > 0) cols[k++] = row - 1;
+        cols[k++] = row;
+        if (row < n - 1) cols[k++] = row + 1;
+      });
+}
+
+void near_skew_values(const LinearSolver& solver, double eps) {
+  const auto A = solver.matrix();
+  const auto row_map = A.graph.row_map;
+  const auto cols = A.graph.entries;
+  const auto values = A.values;
+  par_for(
+      "test::near_skew", 0, A.numRows(), KOKKOS_LAMBDA(int row) {
+        for (Offset k = row_map(row); k < row_map(row + 1); ++k)
+          values(k) = cols(k) == row ? eps : (cols(k) < row ? -1.0 : 1.0);
+      });
+}
+
+SolverSettings near_skew_settings(bool fallback) {
+  SolverSettings settings;
+  settings.tolerance = 1e-6;
+  settings.max_iterations = 60;
+  settings.preconditioning = {-1};
+  settings.fallback = fallback;
+  return settings;
+}
+
+TEST(LinearSolver, FallbackLadderSolvesWhatPlainBicgstabCannot) {
+  const int n = 400;
+  LinearSolver solver("test::skew", tridiagonal_pattern(n), near_skew_settings(true));
+  near_skew_values(solver, 1e-3);
+  const auto b = rhs(n);
+  const auto A = to_dense(solver.matrix());
+  const linalg::Vector x("x", n);
+  const auto report = solver.solve(from_host(b), x);
+  std::cout << "ladder: " << report.summary() << "\n";
+  ASSERT_GE(report.attempts.size(), 2u);
+  EXPECT_FALSE(report.attempts[0].converged);
+  EXPECT_EQ(report.attempts[0].preconditioning.name(), "none");
+  EXPECT_EQ(report.attempts[1].preconditioning.name(), "ILU(0)");
+  EXPECT_TRUE(report.attempts[1].converged);
+  EXPECT_LE(max_fractional_residual(A, to_host(x), b), 1e-6);
+  EXPECT_LE(relative_error(to_host(x), dense_solve(A, b)), 1e-5);
+}
+
+TEST(LinearSolver, FailureKeepsTheInitialGuessAndNamesTheRow) {
+  const int n = 400;
+  LinearSolver solver("test::skew", tridiagonal_pattern(n), near_skew_settings(false));
+  near_skew_values(solver, 1e-3);
+  const std::vector<double> guess(n, 0.25);
+  const auto x = from_host(guess);
+  try {
+    solver.solve(from_host(rhs(n)), x, [](int row) { return "cell " + std::to_string(row); });
+    FAIL() << "plain BiCGStab was expected to fail on the near-skew matrix";
+  } catch (const linalg::SolveFailure& failure) {
+    const std::string message = failure.what();
+    EXPECT_NE(message.find("previous solution is kept"), std::string::npos) << message;
+    EXPECT_NE(message.find("worst row"), std::string::npos) << message;
+    EXPECT_NE(message.find(", cell "), std::string::npos) << message;
+    EXPECT_NE(message.find("residual history"), std::string::npos) << message;
+    EXPECT_FALSE(failure.report().converged);
+    EXPECT_EQ(failure.report().last().iterations, 60);
+  }
+  EXPECT_EQ(to_host(x), guess);
+}
+
+/// Pairs of rows swapped: [[0, 1], [1, 0]] blocks (the diagonal is in the
+/// pattern, with value 0).
+CrsPattern swap_pattern(int n) {
+  return linalg::build_pattern(
+      "test::swap", n, KOKKOS_LAMBDA(int) { return 2; },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) {
+        const int partner = row ^ 1;
+        cols[0] = row < partner ? row : partner;
+        cols[1] = row < partner ? partner : row;
+      });
+}
+
+void swap_values(const LinearSolver& solver) {
+  const auto A = solver.matrix();
+  const auto cols = A.graph.entries;
+  const auto values = A.values;
+  par_for(
+      "test::swap_values", 0, A.nnz(), KOKKOS_LAMBDA(int k) { values(k) = cols(k) == k / 2 ? 0.0 : 1.0; });
+}
+
+/// ILU(0) meets a zero pivot in row 0, which Kokkos Kernels replaces (its
+/// spiluk sets such a pivot to 1e6 before inversion); the preconditioned solve
+/// still converges.
+TEST(LinearSolver, ZeroDiagonalsAreSolved) {
+  const int n = 64;
+  SolverSettings settings;
+  settings.tolerance = 1e-8;
+  settings.preconditioning = {0};
+  LinearSolver solver("test::swap", swap_pattern(n), settings);
+  swap_values(solver);
+  const auto b = rhs(n);
+  const linalg::Vector x("x", n);
+  const auto report = solver.solve(from_host(b), x);
+  std::cout << "zero diagonals: " << report.summary() << "\n";
+  EXPECT_TRUE(report.converged);
+  EXPECT_LE(max_fractional_residual(to_dense(solver.matrix()), to_host(x), b), 1e-8);
+}
+
+/// Sets one matrix value to NaN.
+void poison(const LinearSolver& solver, int k) {
+  auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), solver.matrix().values);
+  values(k) = std::nan("");
+  Kokkos::deep_copy(solver.matrix().values, values);
+}
+
+TEST(LinearSolver, NonFiniteMatrixIsRefusedBeforeIterating) {
+  const int n = 10;
+  LinearSolver solver("test::cd", five_point_pattern(n), SolverSettings{});
+  convection_diffusion_values(solver, n, 1.0, 1.0, 1.0);
+  poison(solver, 40);
+  const std::vector<double> guess(n * n, 1.0);
+  const auto x = from_host(guess);
+  try {
+    solver.solve(from_host(rhs(n * n)), x);
+    FAIL() << "a NaN matrix entry was accepted";
+  } catch (const linalg::SolveFailure& failure) {
+    EXPECT_NE(std::string(failure.what()).find("non-finite matrix entry or right-hand side in row"), std::string::npos)
+        << failure.what();
+    EXPECT_EQ(failure.report().total_iterations(), 0);
+  }
+  EXPECT_EQ(to_host(x), guess);
+}
+
+TEST(LinearSolver, FractionalResidualFollowsRbo24) {
+  EXPECT_DOUBLE_EQ(linalg::fractional_residual(0.1, 1.0), 0.1 / 1.0);   // A x = 0.9
+  EXPECT_DOUBLE_EQ(linalg::fractional_residual(-3.0, 1.0), 3.0 / 4.0);  // A x = 4
+  EXPECT_EQ(linalg::fractional_residual(0.0, 0.0), 0.0);
+}
+
+TEST(LinearSolver, SettingsAreValidated) {
+  for (double tol : {0.0, -1e-3, 1.0, 2.0, std::nan("")}) {
+    SolverSettings s;
+    s.tolerance = tol;
+    EXPECT_THROW(s.validate(), std::invalid_argument) << tol;
+  }
+  SolverSettings s;
+  s.max_iterations = 0;
+  EXPECT_THROW(s.validate(), std::invalid_argument);
+}
+
+TEST(LinearSolver, LadderOrder) {
+  SolverSettings s;
+  s.preconditioning = {1};
+  s.max_fill_level = 3;
+  std::vector<std::string> names;
+  for (const auto& p : s.ladder()) names.push_back(p.name());
+  EXPECT_EQ(names, (std::vector<std::string>{"ILU(1)", "none", "ILU(0)", "ILU(2)", "ILU(3)"}));
+  s.fallback = false;
+  EXPECT_EQ(s.ladder().size(), 1u);
+}
+
+/// Row 2 holds column 3 instead of its diagonal.
+void pattern_without_diagonal() {
+  linalg::build_pattern(
+      "test::bad", 4, KOKKOS_LAMBDA(int) { return 1; },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) { cols[0] = row == 2 ? 3 : row; });
+}
+
+/// Row 3 lists column 0 after column 3.
+void pattern_unsorted() {
+  linalg::build_pattern(
+      "test::bad", 4, KOKKOS_LAMBDA(int) { return 2; },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) {
+        cols[0] = row;
+        cols[1] = (row + 1) % 4;
+      });
+}
+
+TEST(CrsPattern, RejectsRowsWithoutDiagonalOrUnsorted) {
+  try {
+    pattern_without_diagonal();
+    FAIL() << "a row without its diagonal was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("row 2"), std::string::npos) << e.what();
+  }
+  try {
+    pattern_unsorted();
+    FAIL() << "an unsorted row was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("row 3"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
