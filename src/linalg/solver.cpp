@@ -4,7 +4,6 @@
 #include "mote/linalg/solver.hpp"
 
 #include <KokkosBlas1_dot.hpp>
-#include <KokkosBlas1_nrm2.hpp>
 #include <KokkosSparse_spmv.hpp>
 #include <algorithm>
 #include <chrono>
@@ -130,17 +129,24 @@ void restart(Work& w) {
       });
 }
 
-/// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
-/// for the next iteration.
-Measures measure(Work& w, const Vector& b) {
-  const Vector r = w.r;
+/// max_i |r_i| / max(|b_i|, |A_ii x_i|), non-finite rows counted as HUGE_VAL.
+void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x,
+                             const Vector& r, const Scalar& result) {
+  const auto diagonal = pattern.diagonal;
+  const auto values = A.values;
   Kokkos::parallel_reduce(
-      "linalg::bicgstab_fractional_residual", Kokkos::RangePolicy<ExecSpace>(0, static_cast<int>(r.extent(0))),
+      "linalg::bicgstab_fractional_residual", Kokkos::RangePolicy<ExecSpace>(0, pattern.n_rows),
       KOKKOS_LAMBDA(int i, Real& m) {
-        const Real f = fractional_residual(r(i), b(i));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)));
         m = math::fmax(m, math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL));
       },
-      Kokkos::Max<Real, MemSpace>(w.res_max));
+      Kokkos::Max<Real, MemSpace>(result));
+}
+
+/// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
+/// for the next iteration.
+Measures measure(Work& w, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x) {
+  max_fractional_residual(pattern, A, b, x, w.r, w.res_max);
   KokkosBlas::dot(w.rr, w.r, w.r);
   KokkosBlas::dot(w.rho_next, w.r_hat, w.r);
   const View<Real*> packed = w.packed;
@@ -202,13 +208,15 @@ void full_step(Work& w, const Vector& p_hat, const Vector& s_hat, const Vector& 
 }
 
 /// Row of the largest fractional residual of r.
-int worst_row(const Vector& r, const Vector& b) {
+int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r) {
   using Loc = Kokkos::MaxLoc<Real, int>;
+  const auto diagonal = pattern.diagonal;
+  const auto values = A.values;
   Loc::value_type worst;
   par_reduce(
-      "linalg::bicgstab_worst_row", 0, static_cast<int>(r.extent(0)),
+      "linalg::bicgstab_worst_row", 0, pattern.n_rows,
       KOKKOS_LAMBDA(int i, Loc::value_type& m) {
-        const Real f = fractional_residual(r(i), b(i));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)));
         const Real value = math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL);
         if (value > m.val) {
           m.val = value;
@@ -249,9 +257,7 @@ int first_non_finite_row(const CrsPattern& pattern, const CrsMatrix& DA, const V
   return bad;
 }
 
-bool accepted(const Measures& m, Real b_norm, Real tolerance) {
-  return m.residual <= tolerance && std::sqrt(m.rr) <= tolerance * b_norm;
-}
+bool accepted(const Measures& m, Real tolerance) { return m.residual <= tolerance; }
 
 }  // namespace
 
@@ -282,7 +288,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   auto finish = [&](const std::string& reason, bool converged) {
     out.stop_reason = reason;
     out.converged = converged;
-    if (!converged) out.worst_row = worst_row(work_->r, b_scaled_);
+    if (!converged) out.worst_row = worst_row(pattern_, scaled_, b_scaled_, x, work_->r);
     Kokkos::fence();
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
@@ -297,16 +303,15 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     }
   }
   Work& w = *work_;
-  const Real b_norm = KokkosBlas::nrm2(b_scaled_);
   const Real tol = settings_.tolerance;
   const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
 
   true_residual(scaled_, b_scaled_, x, w.r);
   restart(w);
-  Measures m = measure(w, b_scaled_);
+  Measures m = measure(w, pattern_, scaled_, b_scaled_, x);
   out.history.push_back(m.residual);
   out.residual = m.residual;
-  if (accepted(m, b_norm, tol)) return finish("converged", true);
+  if (accepted(m, tol)) return finish("converged", true);
 
   while (out.iterations < settings_.max_iterations) {
     ++out.iterations;
@@ -317,15 +322,15 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     if (ilu) ilu->apply(w.s, s_hat);
     KokkosSparse::spmv("N", 1.0, scaled_, s_hat, 0.0, w.t);
     full_step(w, p_hat, s_hat, x);
-    m = measure(w, b_scaled_);
+    m = measure(w, pattern_, scaled_, b_scaled_, x);
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
-    if (accepted(m, b_norm, tol)) {
+    if (accepted(m, tol)) {
       true_residual(scaled_, b_scaled_, x, w.r);
-      m = measure(w, b_scaled_);
+      m = measure(w, pattern_, scaled_, b_scaled_, x);
       out.residual = m.residual;
-      if (accepted(m, b_norm, tol)) return finish("converged", true);
+      if (accepted(m, tol)) return finish("converged", true);
       ++out.restarts;  // the recursive residual drifted from b - A x
       restart(w);
       continue;

@@ -1,0 +1,117 @@
+// Multi-band flux-limited diffusion coupled to the thermal energy, RBO24
+// sec. 4.1: the implicit system of eq. 48 (for B = 4 sigma T^4 in each cell)
+// and eq. 49 (for E_R^b in each band and cell), with
+//   F^b = -(c lambda^b / rho kappa_R^b) grad E_R^b          (eq. 41)
+// and the Kley (1989) limiter lambda^b (eq. 42-43). The diffusion coefficient
+// and the Planck factors f^b are evaluated at t^n (time-lagged, as RBO24); the
+// divergence of F^b is the 9-point matrix of app. A, built from the mesh's
+// Wu et al. (2012) face coefficients (mesh::diffusion_coefficients, the same
+// coefficients the dust diffusion uses). dt = infinity gives the steady state.
+//
+// Unknowns are ordered cell by cell, (E^1 .. E^nb, B) in each, cells with
+// theta fastest; the pattern is built once, the values at every step, and the
+// system is solved by linalg::LinearSolver (ILU(k) + BiCGStab). B comes last
+// in its cell so that the level sets of the triangular factors follow the
+// grid's wavefront (B first would put every B row into the first level, and
+// the ILU numeric phase of Kokkos Kernels allocates rows-per-level x rows).
+//
+// Boundaries per side: reflecting (no flux through the face; ghost cells
+// mirror the active ones, as at the mid-plane) or open (ghost cells hold the
+// external field E_ext^b = f^b(T_ext) 4 sigma T_ext^4 / c).
+//
+// The bands cover all wavelengths: the first band extends to lambda = 0 and
+// the last to infinity, so that sum_b f^b = 1.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "mote/core/units.hpp"
+#include "mote/linalg/solver.hpp"
+#include "mote/mesh/diffusion_stencil.hpp"
+#include "mote/mesh/grid.hpp"
+
+namespace mote::radiation {
+
+/// c and sigma_SB in code units (temperatures in K).
+struct RadiationConstants {
+  Real c = 0.0;
+  Real sigma = 0.0;
+  static RadiationConstants in(const units::UnitSystem& units);
+};
+
+enum class RadiationBoundary { Open, Reflecting };
+
+struct FldBoundaries {
+  RadiationBoundary inner = RadiationBoundary::Open;        // R_in
+  RadiationBoundary outer = RadiationBoundary::Open;        // R_out
+  RadiationBoundary lower = RadiationBoundary::Reflecting;  // theta_min (mid-plane)
+  RadiationBoundary upper = RadiationBoundary::Open;        // theta_max
+  Real T_ext = 10.0;                                        // K, the field at open sides
+};
+
+struct FldSettings {
+  std::vector<double> band_edges_cm;  // nb + 1 increasing wavelengths; the outer two stand for 0 and infinity
+  FldBoundaries boundaries;
+  linalg::SolverSettings solver;
+  int bands() const { return static_cast<int>(band_edges_cm.size()) - 1; }
+  /// Throws std::invalid_argument naming the bad setting.
+  void validate() const;
+};
+
+/// Cell fields (with ghost cells, shape (nr_total, nt_total[, nb])) that the
+/// caller provides at t^n.
+struct FldFields {
+  RealView2 heat_capacity;      // rho c_V (energy / volume / K)
+  RealView2 heating;            // S_heat: stellar + viscous (energy / volume / time)
+  RealView3 absorption;         // sum_s rho_s kappa_P,s^b from absorption opacities (1 / length)
+  RealView3 extinction;         // rho kappa_R^b from total (absorption + scattering) opacities (1 / length)
+  RealView3 scattering_source;  // S_sca^b (energy / volume / time)
+};
+
+/// The evolved state: temperature (K) and radiation energy density per band.
+struct FldState {
+  RealView2 T;
+  RealView3 E;
+};
+
+class FldSolver {
+ public:
+  FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationConstants constants);
+  ~FldSolver();
+  FldSolver(const FldSolver&) = delete;
+  FldSolver& operator=(const FldSolver&) = delete;
+
+  int bands() const { return nb_; }
+  const RadiationConstants& constants() const { return constants_; }
+  FldFields make_fields() const;
+  FldState make_state() const;
+
+  /// One implicit step of eq. 48-49 over dt (infinity: the steady state).
+  /// Active cells of `state` are updated; on a failed solve (or a B <= 0)
+  /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
+  linalg::SolveReport step(double dt, const FldFields& fields, FldState& state);
+
+  /// Planck factors f^b(T) at the active cells (nr_total, nt_total, nb) of the last step.
+  const RealView3& planck_factors() const { return planck_; }
+  /// External field E_ext^b at the open sides.
+  const RealView1& external_field() const { return E_ext_; }
+
+ private:
+  void update_diffusion(const FldFields& fields, const FldState& state);
+  void assemble(double inv_dt, const FldFields& fields, const FldState& state);
+  void write_back(FldState& state) const;
+
+  const mesh::Grid& grid_;
+  FldSettings settings_;
+  RadiationConstants constants_;
+  int nb_;
+  RealView1 band_edges_, E_ext_;
+  RealView3 planck_;
+  std::vector<RealView2> D_;  // c lambda / rho kappa_R per band (with ghosts)
+  std::vector<mesh::DiffusionCoefficients> coef_;
+  std::unique_ptr<linalg::LinearSolver> solver_;
+  linalg::Vector rhs_, x_;
+};
+
+}  // namespace mote::radiation

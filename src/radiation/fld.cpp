@@ -1,0 +1,381 @@
+// Multi-band FLD (RBO24 sec. 4.1, eq. 40-43, 47-49, app. A); see fld.hpp.
+#include "mote/radiation/fld.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mote/radiation/flux_limiter.hpp"
+#include "mote/radiation/planck.hpp"
+
+namespace mote::radiation {
+
+using linalg::Ordinal;
+
+RadiationConstants RadiationConstants::in(const units::UnitSystem& u) {
+  const double flux_unit = u.energy() / (u.length * u.length * u.time);
+  return {units::cgs::c / u.velocity(), units::cgs::sigma_SB / flux_unit};
+}
+
+void FldSettings::validate() const {
+  if (bands() < 1) throw std::invalid_argument("radiation: at least one band (two band edges) is needed");
+  for (int b = 0; b <= bands(); ++b) {
+    if (!(band_edges_cm[b] > 0.0) || !std::isfinite(band_edges_cm[b]))
+      throw std::invalid_argument("radiation: band edge " + std::to_string(b) + " must be a positive wavelength");
+    if (b > 0 && !(band_edges_cm[b] > band_edges_cm[b - 1]))
+      throw std::invalid_argument("radiation: band edges must increase (edge " + std::to_string(b) + ")");
+  }
+  if (!(boundaries.T_ext > 0.0) || !std::isfinite(boundaries.T_ext))
+    throw std::invalid_argument("radiation: T_ext must be a positive, finite temperature");
+  solver.validate();
+}
+
+namespace {
+
+/// Active cells and rows of the FLD system; ghost references resolved
+/// through the boundaries.
+struct CellMap {
+  int ng, nr, nt, nb;
+  bool reflect_inner, reflect_outer, reflect_lower, reflect_upper;
+
+  KOKKOS_INLINE_FUNCTION int cell(int i, int j) const { return (i - ng) * nt + (j - ng); }
+  KOKKOS_INLINE_FUNCTION int i_of(int c) const { return ng + c / nt; }
+  KOKKOS_INLINE_FUNCTION int j_of(int c) const { return ng + c % nt; }
+  KOKKOS_INLINE_FUNCTION int row_E(int c, int b) const { return c * (nb + 1) + b; }
+  KOKKOS_INLINE_FUNCTION int row_B(int c) const { return c * (nb + 1) + nb; }
+  /// The active cell whose value (i, j) holds (one ghost layer at most), or
+  /// -1 where an open side gives the external field.
+  KOKKOS_INLINE_FUNCTION int resolve(int i, int j) const {
+    if (i < ng) {
+      if (!reflect_inner) return -1;
+      i = 2 * ng - 1 - i;
+    } else if (i >= ng + nr) {
+      if (!reflect_outer) return -1;
+      i = 2 * (ng + nr) - 1 - i;
+    }
+    if (j < ng) {
+      if (!reflect_lower) return -1;
+      j = 2 * ng - 1 - j;
+    } else if (j >= ng + nt) {
+      if (!reflect_upper) return -1;
+      j = 2 * (ng + nt) - 1 - j;
+    }
+    return cell(i, j);
+  }
+};
+
+CellMap cell_map(const mesh::Grid& grid, int nb, const FldBoundaries& b) {
+  const auto reflect = [](RadiationBoundary side) { return side == RadiationBoundary::Reflecting; };
+  return {grid.ng, grid.nr, grid.nt, nb, reflect(b.inner), reflect(b.outer), reflect(b.lower), reflect(b.upper)};
+}
+
+/// Inserts col into the sorted cols[0 .. n) unless present.
+KOKKOS_INLINE_FUNCTION void insert_sorted(Ordinal* cols, int& n, Ordinal col) {
+  int k = n;
+  while (k > 0 && cols[k - 1] > col) --k;
+  if (k > 0 && cols[k - 1] == col) return;
+  for (int m = n; m > k; --m) cols[m] = cols[m - 1];
+  cols[k] = col;
+  ++n;
+}
+
+/// Columns of an E^b row: B of its cell and E^b of the 3 x 3 cells around it
+/// (resolved through the boundaries), sorted; returns their number (<= 10).
+KOKKOS_INLINE_FUNCTION int band_row_columns(const CellMap& map, int c, int b, Ordinal* cols) {
+  int n = 0;
+  insert_sorted(cols, n, map.row_B(c));
+  const int i = map.i_of(c), j = map.j_of(c);
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj) {
+      const int other = map.resolve(i + di, j + dj);
+      if (other >= 0) insert_sorted(cols, n, map.row_E(other, b));
+    }
+  return n;
+}
+
+linalg::CrsPattern fld_pattern(const CellMap& map) {
+  const int per_cell = map.nb + 1;
+  return linalg::build_pattern(
+      "radiation::fld_pattern", map.nr * map.nt * per_cell,
+      KOKKOS_LAMBDA(int row) {
+        const int c = row / per_cell, component = row % per_cell;
+        if (component == map.nb) return per_cell;
+        Ordinal cols[10];
+        return band_row_columns(map, c, component, cols);
+      },
+      KOKKOS_LAMBDA(int row, Ordinal* cols) {
+        const int c = row / per_cell, component = row % per_cell;
+        if (component == map.nb) {
+          for (int k = 0; k < per_cell; ++k) cols[k] = c * per_cell + k;
+          return;
+        }
+        band_row_columns(map, c, component, cols);
+      });
+}
+
+}  // namespace
+
+FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationConstants constants)
+    : grid_(grid), settings_(std::move(settings)), constants_(constants), nb_(settings_.bands()) {
+  settings_.validate();
+  if (grid.comm().size() > 1)
+    throw std::invalid_argument("radiation: the FLD solver runs on one rank (MPI decomposition not yet supported)");
+  if (!(constants.c > 0.0 && constants.sigma > 0.0))
+    throw std::invalid_argument("radiation: c and sigma must be positive in code units");
+  band_edges_ = RealView1("radiation::band_edges", nb_ + 1);
+  auto edges_h = Kokkos::create_mirror_view(band_edges_);
+  for (int b = 0; b <= nb_; ++b) edges_h(b) = settings_.band_edges_cm[b];
+  Kokkos::deep_copy(band_edges_, edges_h);
+
+  E_ext_ = RealView1("radiation::E_ext", nb_);
+  auto ext_h = Kokkos::create_mirror_view(E_ext_);
+  const double T = settings_.boundaries.T_ext;
+  for (int b = 0; b < nb_; ++b) {
+    const double lo = b == 0 ? 0.0 : edges_h(b), hi = b == nb_ - 1 ? 0.0 : edges_h(b + 1);
+    ext_h(b) = band_fraction(lo, hi, T) * 4.0 * constants_.sigma * T * T * T * T / constants_.c;
+  }
+  Kokkos::deep_copy(E_ext_, ext_h);
+
+  planck_ = RealView3("radiation::planck_factors", grid.nr_total(), grid.nt_total(), nb_);
+  for (int b = 0; b < nb_; ++b) {
+    D_.emplace_back("radiation::D_band" + std::to_string(b), grid.nr_total(), grid.nt_total());
+    Kokkos::deep_copy(D_.back(), 1.0);
+    coef_.push_back(mesh::diffusion_coefficients(grid, D_.back()));
+  }
+  const CellMap map = cell_map(grid, nb_, settings_.boundaries);
+  solver_ = std::make_unique<linalg::LinearSolver>("radiation::fld", fld_pattern(map), settings_.solver);
+  rhs_ = linalg::Vector("radiation::rhs", solver_->pattern().n_rows);
+  x_ = linalg::Vector("radiation::x", solver_->pattern().n_rows);
+}
+
+FldSolver::~FldSolver() = default;
+
+FldFields FldSolver::make_fields() const {
+  const int NI = grid_.nr_total(), NJ = grid_.nt_total();
+  return {RealView2("radiation::heat_capacity", NI, NJ), RealView2("radiation::heating", NI, NJ),
+          RealView3("radiation::absorption", NI, NJ, nb_), RealView3("radiation::extinction", NI, NJ, nb_),
+          RealView3("radiation::scattering_source", NI, NJ, nb_)};
+}
+
+FldState FldSolver::make_state() const {
+  return {RealView2("radiation::T", grid_.nr_total(), grid_.nt_total()),
+          RealView3("radiation::E", grid_.nr_total(), grid_.nt_total(), nb_)};
+}
+
+namespace {
+
+/// f^b(T^n) in every active cell (eq. 40).
+void compute_planck_factors(const mesh::Grid& grid, const RealView1& edges, const RealView2& T, const RealView3& f) {
+  const int nb = static_cast<int>(f.extent(2));
+  par_for(
+      "radiation::planck_factors", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        for (int b = 0; b < nb; ++b) {
+          const Real lo = b == 0 ? 0.0 : edges(b), hi = b == nb - 1 ? 0.0 : edges(b + 1);
+          f(i, j, b) = band_fraction(lo, hi, T(i, j));
+        }
+      });
+}
+
+/// D = c lambda / rho kappa_R at active cells (eq. 41-43), from E^n with its
+/// gradient from the four neighbours; ghost cells copy the nearest active cell.
+void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, int b, Real c,
+                                   const RealView3& extinction, const RealView3& E, const RealView1& E_ext,
+                                   const RealView2& D) {
+  const auto Rc = grid.Rc;
+  const auto Zc = grid.Zc;
+  par_for(
+      "radiation::fld_diffusion_coefficient", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const auto value = [&](int a, int d) {
+          const int other = map.resolve(a, d);
+          return other >= 0 ? E(map.i_of(other), map.j_of(other), b) : E_ext(b);
+        };
+        const Real e1R = Rc(i + 1) - Rc(i - 1), e1Z = Zc(i + 1, j) - Zc(i - 1, j);
+        const Real e2R = 0.0, e2Z = Zc(i, j + 1) - Zc(i, j - 1);  // a column has one R
+        const Real d1 = value(i + 1, j) - value(i - 1, j), d2 = value(i, j + 1) - value(i, j - 1);
+        const Real det = e1R * e2Z - e1Z * e2R;
+        const Real gR = (d1 * e2Z - d2 * e1Z) / det, gZ = (e1R * d2 - e2R * d1) / det;
+        const Real chi = extinction(i, j, b);
+        const Real lambda = kley_limiter(limiter_ratio(math::sqrt(gR * gR + gZ * gZ), chi, E(i, j, b)));
+        D(i, j) = c * lambda / chi;
+      });
+  const int i0 = grid.i_begin(), i1 = grid.i_end() - 1, j0 = grid.j_begin(), j1 = grid.j_end() - 1;
+  par_for(
+      "radiation::fld_diffusion_ghosts", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        const int ia = i < i0 ? i0 : (i > i1 ? i1 : i), ja = j < j0 ? j0 : (j > j1 ? j1 : j);
+        if (ia != i || ja != j) D(i, j) = D(ia, ja);
+      });
+}
+
+/// Adds v to the entry (row, col), which the pattern holds.
+KOKKOS_INLINE_FUNCTION void add_entry(const linalg::CrsMatrix::row_map_type& row_map,
+                                      const linalg::CrsMatrix::index_type& entries,
+                                      const linalg::CrsMatrix::values_type& values, int row, int col, Real v) {
+  for (auto k = row_map(row); k < row_map(row + 1); ++k)
+    if (entries(k) == col) {
+      values(k) += v;
+      return;
+    }
+}
+
+/// The E^b rows of eq. 49 (times V): exchange with B, storage, and the net
+/// outflow through the four faces, sum_faces (flux x area), from the Wu
+/// coefficients; reflecting faces carry no flux, open ghosts go to the rhs.
+void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_dt, Real c,
+                   const mesh::DiffusionCoefficients& coef, const FldFields& fields, const RealView3& E,
+                   const RealView3& f, const RealView1& E_ext, const linalg::CrsMatrix& A, const linalg::Vector& rhs) {
+  const auto row_map = A.graph.row_map;
+  const auto entries = A.graph.entries;
+  const auto values = A.values;
+  const auto V = grid.V;
+  const auto k_abs = fields.absorption, S_sca = fields.scattering_source;
+  const int ng = map.ng, nr = map.nr, nt = map.nt;
+  par_for(
+      "radiation::fld_assemble_band", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const int cell = map.cell(i, j), row = map.row_E(cell, b);
+        const Real vol = V(i, j), k = k_abs(i, j, b);
+        add_entry(row_map, entries, values, row, map.row_B(cell), -vol * k * f(i, j, b));
+        add_entry(row_map, entries, values, row, row, vol * (inv_dt + c * k));
+        Real r = vol * (inv_dt * E(i, j, b) + S_sca(i, j, b));
+        // sign * (coefficient of the cell (ci, cj)) for every cell of a face flux.
+        const auto face = [&](Real sign, const Real* cf, const int* ci, const int* cj) {
+          for (int q = 0; q < 4; ++q) {
+            const int other = map.resolve(ci[q], cj[q]);
+            if (other >= 0)
+              add_entry(row_map, entries, values, row, map.row_E(other, b), sign * cf[q]);
+            else
+              r -= sign * cf[q] * E_ext(b);
+          }
+        };
+        for (int side = 0; side < 2; ++side) {  // radial faces at Re(i) (inflow side) and Re(i + 1)
+          const int I = i + side;
+          const bool closed = side == 0 ? (I == ng && map.reflect_inner) : (I == ng + nr && map.reflect_outer);
+          if (closed) continue;
+          const Real cf[4] = {coef.radial(I, j, 0), coef.radial(I, j, 1), coef.radial(I, j, 2), coef.radial(I, j, 3)};
+          const int ci[4] = {I - 1, I, I - 1, I}, cj[4] = {j, j, j - 1, j + 1};
+          face(side == 0 ? -1.0 : 1.0, cf, ci, cj);
+        }
+        for (int side = 0; side < 2; ++side) {  // theta faces at te(j) and te(j + 1)
+          const int J = j + side;
+          const bool closed = side == 0 ? (J == ng && map.reflect_lower) : (J == ng + nt && map.reflect_upper);
+          if (closed) continue;
+          const Real cf[4] = {coef.theta(i, J, 0), coef.theta(i, J, 1), coef.theta(i, J, 2), coef.theta(i, J, 3)};
+          const int ci[4] = {i, i, i - 1, i + 1}, cj[4] = {J - 1, J, J - 1, J};
+          face(side == 0 ? -1.0 : 1.0, cf, ci, cj);
+        }
+        rhs(row) = r;
+      });
+}
+
+/// The B rows of eq. 48 (times V), with C = rho c_V / (16 sigma T^3) (eq. 47).
+void assemble_temperature(const mesh::Grid& grid, const CellMap& map, Real inv_dt, Real c, Real sigma,
+                          const FldFields& fields, const RealView2& T, const RealView3& f, const linalg::CrsMatrix& A,
+                          const linalg::Vector& rhs) {
+  const auto row_map = A.graph.row_map;
+  const auto values = A.values;
+  const auto V = grid.V;
+  const auto C_V = fields.heat_capacity, S = fields.heating;
+  const auto k_abs = fields.absorption;
+  const int nb = map.nb;
+  par_for(
+      "radiation::fld_assemble_temperature", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const int row = map.row_B(map.cell(i, j));
+        const Real vol = V(i, j), Tn = T(i, j);
+        const Real C = C_V(i, j) / (16.0 * sigma * Tn * Tn * Tn);
+        const auto first = row_map(row);  // columns E^1 .. E^nb, B of this cell
+        Real diagonal = inv_dt * C;
+        for (int b = 0; b < nb; ++b) {
+          diagonal += k_abs(i, j, b) * f(i, j, b);
+          values(first + b) = -vol * c * k_abs(i, j, b);
+        }
+        values(first + nb) = vol * diagonal;
+        rhs(row) = vol * (inv_dt * C * 4.0 * sigma * Tn * Tn * Tn * Tn + S(i, j));
+      });
+}
+
+/// x = (B^n, E^n) as the initial guess.
+void initial_guess(const mesh::Grid& grid, const CellMap& map, Real sigma, const FldState& state,
+                   const linalg::Vector& x) {
+  const auto T = state.T;
+  const auto E = state.E;
+  const int nb = map.nb;
+  par_for(
+      "radiation::fld_initial_guess", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const int cell = map.cell(i, j);
+        const Real t = T(i, j);
+        x(map.row_B(cell)) = 4.0 * sigma * t * t * t * t;
+        for (int b = 0; b < nb; ++b) x(map.row_E(cell, b)) = E(i, j, b);
+      });
+}
+
+}  // namespace
+
+void FldSolver::update_diffusion(const FldFields& fields, const FldState& state) {
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  for (int b = 0; b < nb_; ++b) {
+    compute_diffusion_coefficient(grid_, map, b, constants_.c, fields.extinction, state.E, E_ext_, D_[b]);
+    mesh::update_diffusion_coefficients(grid_, D_[b], coef_[b]);
+  }
+}
+
+void FldSolver::assemble(double inv_dt, const FldFields& fields, const FldState& state) {
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  const auto& A = solver_->matrix();
+  Kokkos::deep_copy(A.values, 0.0);
+  for (int b = 0; b < nb_; ++b)
+    assemble_band(grid_, map, b, inv_dt, constants_.c, coef_[b], fields, state.E, planck_, E_ext_, A, rhs_);
+  assemble_temperature(grid_, map, inv_dt, constants_.c, constants_.sigma, fields, state.T, planck_, A, rhs_);
+}
+
+void FldSolver::write_back(FldState& state) const {
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  const auto x = x_;
+  int first_bad = map.nr * map.nt;
+  par_reduce(
+      "radiation::fld_check_B", 0, map.nr * map.nt,
+      KOKKOS_LAMBDA(int cell, int& first) {
+        const Real B = x(map.row_B(cell));
+        if (!(B > 0.0 && math::isfinite(B)) && cell < first) first = cell;
+      },
+      Kokkos::Min<int>(first_bad));
+  if (first_bad < map.nr * map.nt)
+    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite in cell (" +
+                             std::to_string(map.i_of(first_bad) - map.ng) + ", " +
+                             std::to_string(map.j_of(first_bad) - map.ng) + "); the previous temperature is kept");
+  const auto T = state.T;
+  const auto E = state.E;
+  const Real sigma = constants_.sigma;
+  const int nb = nb_;
+  par_for(
+      "radiation::fld_write_back", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const int cell = map.cell(i, j);
+        T(i, j) = math::pow(x(map.row_B(cell)) / (4.0 * sigma), 0.25);
+        for (int b = 0; b < nb; ++b) E(i, j, b) = x(map.row_E(cell, b));
+      });
+}
+
+linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState& state) {
+  if (!(dt > 0.0)) throw std::invalid_argument("radiation: the FLD time-step must be > 0 (or infinity)");
+  const double inv_dt = std::isinf(dt) ? 0.0 : 1.0 / dt;
+  compute_planck_factors(grid_, band_edges_, state.T, planck_);
+  update_diffusion(fields, state);
+  assemble(inv_dt, fields, state);
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  initial_guess(grid_, map, constants_.sigma, state, x_);
+  const int per_cell = nb_ + 1;
+  const auto describe = [map, per_cell](int row) {
+    const int cell = row / per_cell, component = row % per_cell;
+    return (component == per_cell - 1 ? std::string("B") : "band " + std::to_string(component)) + ", cell (" +
+           std::to_string(map.i_of(cell) - map.ng) + ", " + std::to_string(map.j_of(cell) - map.ng) + ")";
+  };
+  auto report = solver_->solve(rhs_, x_, describe);
+  write_back(state);
+  return report;
+}
+
+}  // namespace mote::radiation

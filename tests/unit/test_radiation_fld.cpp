@@ -1,0 +1,319 @@
+// The multi-band FLD solver (RBO24 sec. 4.1) against VALIDATION.md section D:
+//   D3: a Gaussian of radiation energy diffusing in a uniform, optically thick,
+//       purely scattering medium (planar geometry, skewed (R, theta) cells)
+//       against the analytic 2D solution; the observed order of the
+//       V-weighted L1 error under h -> h/2, dt -> dt/4 is >= 1.8;
+//   D4: a uniform medium with reflecting sides relaxes to radiative
+//       equilibrium, f^b(T) B(T) = c E^b in every band to 1e-6, and each step
+//       conserves the linearised energy sum V [C (B' - B) + sum_b (E' - E)];
+//   the Kley limiter: 1/3 in the thick limit, lambda R <= 1 (|F| <= c E) and
+//   -> 1 in the thin limit; Planck band fractions against quadrature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include "mote/radiation/fld.hpp"
+#include "mote/radiation/flux_limiter.hpp"
+#include "mote/radiation/planck.hpp"
+
+namespace {
+
+using namespace mote;
+using radiation::FldSettings;
+using radiation::FldSolver;
+using radiation::RadiationBoundary;
+
+/// 15/pi^4 int_0^x t^3/(e^t - 1) dt by composite Simpson (2e5 intervals).
+double planck_quadrature(double x) {
+  const int n = 200000;
+  const double h = x / n;
+  auto g = [](double t) { return t > 0 ? t * t * t / std::expm1(t) : 0.0; };
+  double s = g(0) + g(x);
+  for (int k = 1; k < n; ++k) s += (k % 2 ? 4.0 : 2.0) * g(k * h);
+  return s * h / 3.0 * 15.0 / std::pow(M_PI, 4);
+}
+
+TEST(Planck, FractionBelowMatchesQuadrature) {
+  for (double x : {0.05, 0.3, 0.99, 1.0, 1.01, 2.0, 4.965114, 10.0, 25.0}) {
+    EXPECT_NEAR(radiation::planck_fraction_below(x), planck_quadrature(x), 1e-12) << x;
+  }
+  EXPECT_NEAR(radiation::planck_fraction_below(60.0), 1.0, 1e-15);
+  // Wien's displacement point in frequency (x = 2.821439) holds ~ 35.5 %
+  // below it; in wavelength (x = 4.965114) ~ 75.0 % at longer wavelengths.
+  EXPECT_NEAR(radiation::planck_fraction_below(4.965114), 0.7498, 5e-4);
+}
+
+TEST(Planck, BandsCoverAllOfB) {
+  const std::vector<double> edges = {1e-4, 1e-3, 1e-2, 1e-1, 1.0};
+  for (double T : {3.0, 30.0, 300.0, 3000.0}) {
+    double sum = 0.0;
+    for (std::size_t b = 0; b + 1 < edges.size(); ++b)
+      sum += radiation::band_fraction(b == 0 ? 0.0 : edges[b], b + 2 == edges.size() ? 0.0 : edges[b + 1], T);
+    EXPECT_NEAR(sum, 1.0, 1e-14) << T;
+  }
+}
+
+TEST(FluxLimiter, ThickAndThinLimits) {
+  EXPECT_DOUBLE_EQ(radiation::kley_limiter(0.0), 1.0 / 3.0);
+  EXPECT_NEAR(radiation::kley_limiter(1e-4), 1.0 / 3.0, 1e-8);
+  EXPECT_NEAR(radiation::kley_limiter(2.0 - 1e-12), radiation::kley_limiter(2.0 + 1e-12), 1e-12);  // continuous
+  for (double R = 1e-3; R < 1e9; R *= 1.7) EXPECT_LE(radiation::kley_limiter(R) * R, 1.0) << R;
+  EXPECT_GT(radiation::kley_limiter(1e8) * 1e8, 0.999);
+  // E <= 0 < |grad E| (an undershoot): free streaming, with lambda still > 0.
+  const double lambda_empty = radiation::kley_limiter(radiation::limiter_ratio(1.0, 1.0, -1e-20));
+  EXPECT_GT(lambda_empty, 0.0);
+  EXPECT_LT(lambda_empty, 1e-29);
+  EXPECT_EQ(radiation::limiter_ratio(0.0, 1.0, 0.0), 0.0);
+}
+
+void fill(const RealView2& v, double value) { Kokkos::deep_copy(v, value); }
+
+/// A host copy that never aliases (create_mirror_view of a host View would).
+template <class V>
+typename V::HostMirror snapshot(const V& v) {
+  auto h = Kokkos::create_mirror(v);
+  Kokkos::deep_copy(h, v);
+  return h;
+}
+void fill(const RealView3& v, double value) { Kokkos::deep_copy(v, value); }
+
+FldSettings reflecting(std::vector<double> edges, double tolerance) {
+  FldSettings s;
+  s.band_edges_cm = std::move(edges);
+  s.boundaries.inner = s.boundaries.outer = s.boundaries.lower = s.boundaries.upper = RadiationBoundary::Reflecting;
+  s.solver.tolerance = tolerance;
+  return s;
+}
+
+// ---- D4 -------------------------------------------------------------------
+
+mesh::GridSpec disc_patch() {
+  mesh::GridSpec s;
+  s.nr = 8;
+  s.ntheta = 6;
+  s.r_edges = mesh::log_edges(1e14, 2e14, s.nr);
+  s.theta_edges = mesh::linear_edges(0.0, 0.3, s.ntheta);
+  return s;
+}
+
+/// rho = 1e-12 g cm^-3, kappa_P^b = (10, 3, 1, 0.3) cm^2/g, kappa_R^b = 2 kappa_P^b,
+/// rho c_V = 1e-8 erg cm^-3 K^-1 (matter and radiation energies comparable).
+void uniform_medium(FldSolver& fld, radiation::FldFields& fields) {
+  fill(fields.heat_capacity, 1e-8);
+  fill(fields.heating, 0.0);
+  fill(fields.scattering_source, 0.0);
+  auto k = Kokkos::create_mirror_view(fields.absorption);
+  auto chi = Kokkos::create_mirror_view(fields.extinction);
+  const double kappa[4] = {10.0, 3.0, 1.0, 0.3};
+  for (std::size_t i = 0; i < k.extent(0); ++i)
+    for (std::size_t j = 0; j < k.extent(1); ++j)
+      for (int b = 0; b < fld.bands(); ++b) {
+        k(i, j, b) = 1e-12 * kappa[b];
+        chi(i, j, b) = 2e-12 * kappa[b];
+      }
+  Kokkos::deep_copy(fields.absorption, k);
+  Kokkos::deep_copy(fields.extinction, chi);
+}
+
+/// sum over active cells of V [C (B' - B) + sum_b (E' - E)], and of V sum_b E'.
+std::pair<double, double> linearised_energy_change(const mesh::Grid& grid, const FldSolver& fld, double C_V,
+                                                   const HostView<Real**>& T0, const HostView<Real***>& E0,
+                                                   const radiation::FldState& state) {
+  auto T1 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.T);
+  auto E1 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E);
+  const double sigma = fld.constants().sigma;
+  double change = 0.0, scale = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const double V = grid.V_h(i, j), t = T0(i, j);
+      const double C = C_V / (16.0 * sigma * t * t * t);
+      double dE = 0.0, E = 0.0;
+      for (int b = 0; b < fld.bands(); ++b) {
+        dE += E1(i, j, b) - E0(i, j, b);
+        E += E1(i, j, b);
+      }
+      change += V * (C * 4.0 * sigma * (std::pow(T1(i, j), 4) - std::pow(t, 4)) + dE);
+      scale += V * E;
+    }
+  return {change, scale};
+}
+
+TEST(FldD4, UniformMediumRelaxesToRadiativeEquilibriumInEveryBand) {
+  const mesh::Grid grid(disc_patch(), core::Comm::world());
+  const std::vector<double> edges = {1e-4, 1e-3, 1e-2, 1e-1, 1.0};
+  FldSolver fld(grid, reflecting(edges, 1e-9), radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  uniform_medium(fld, fields);
+  auto state = fld.make_state();
+  fill(state.T, 100.0);
+  fill(state.E, 0.0);
+  const double dt = 1e5;  // c rho kappa_P^b dt = 9e2 .. 9e4
+  double worst_energy = 0.0, last_change = 1.0;
+  int steps = 0;
+  while (steps < 40 && last_change > 1e-9) {  // until T moves by less than the solver tolerance
+    const auto T0 = snapshot(state.T);
+    const auto E0 = snapshot(state.E);
+    fld.step(dt, fields, state);
+    ++steps;
+    const auto [change, scale] = linearised_energy_change(grid, fld, 1e-8, T0, E0, state);
+    worst_energy = std::max(worst_energy, std::fabs(change) / scale);
+    const auto T1 = snapshot(state.T);
+    last_change = std::fabs(T1(grid.ng, grid.ng) / T0(grid.ng, grid.ng) - 1.0);
+  }
+  auto T = Kokkos::create_mirror_view_and_copy(HostSpace(), state.T);
+  auto E = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E);
+  const double c = fld.constants().c, sigma = fld.constants().sigma;
+  double worst = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j)
+      for (int b = 0; b < fld.bands(); ++b) {
+        const double t = T(i, j);
+        const double emitted = radiation::band_fraction(b == 0 ? 0.0 : edges[b], b == 3 ? 0.0 : edges[b + 1], t) * 4.0 *
+                               sigma * t * t * t * t;
+        worst = std::max(worst, std::fabs(emitted - c * E(i, j, b)) / emitted);
+      }
+  std::cout << "D4: " << steps << " steps, T = " << T(grid.ng, grid.ng) << " K, max |f B - c E| / f B = " << worst
+            << ", max linearised energy change / E_R = " << worst_energy << "\n";
+  EXPECT_LT(steps, 40);
+  EXPECT_LE(worst, 1e-6);
+  // Each row is solved to a fractional residual of 1e-9 of its diagonal term,
+  // ~ c rho kappa E V: the energy sum is held to 1e-9 x max(c rho kappa dt) = 9e-5.
+  EXPECT_LE(worst_energy, 9e-5);
+  EXPECT_LT(T(grid.ng, grid.ng), 100.0);  // the matter heated the radiation field
+}
+
+TEST(FldD4, StepsConserveTheLinearisedEnergy) {
+  const mesh::Grid grid(disc_patch(), core::Comm::world());
+  FldSolver fld(grid, reflecting({1e-4, 1e-3, 1e-2, 1e-1, 1.0}, 1e-13),
+                radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  uniform_medium(fld, fields);
+  auto state = fld.make_state();
+  fill(state.T, 100.0);
+  fill(state.E, 0.0);
+  double worst = 0.0;
+  for (int step = 0; step < 4; ++step) {
+    const auto T0 = snapshot(state.T);
+    const auto E0 = snapshot(state.E);
+    fld.step(3.0, fields, state);  // c rho kappa_P^b dt = 0.03 .. 0.9
+    const auto [change, scale] = linearised_energy_change(grid, fld, 1e-8, T0, E0, state);
+    worst = std::max(worst, std::fabs(change) / scale);
+  }
+  std::cout << "D4: linearised energy change / E_R over 4 steps of c rho kappa dt <= 0.9: " << worst << "\n";
+  EXPECT_LE(worst, 1e-10);
+}
+
+TEST(FldD4, EquilibriumIsKept) {
+  const mesh::Grid grid(disc_patch(), core::Comm::world());
+  const std::vector<double> edges = {1e-4, 1e-3, 1e-2, 1e-1, 1.0};
+  FldSolver fld(grid, reflecting(edges, 1e-10), radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  uniform_medium(fld, fields);
+  auto state = fld.make_state();
+  fill(state.T, 50.0);
+  auto E = Kokkos::create_mirror_view(state.E);
+  const double c = fld.constants().c, sigma = fld.constants().sigma;
+  for (std::size_t i = 0; i < E.extent(0); ++i)
+    for (std::size_t j = 0; j < E.extent(1); ++j)
+      for (int b = 0; b < 4; ++b)
+        E(i, j, b) = radiation::band_fraction(b == 0 ? 0.0 : edges[b], b == 3 ? 0.0 : edges[b + 1], 50.0) * 4.0 *
+                     sigma * std::pow(50.0, 4) / c;
+  Kokkos::deep_copy(state.E, E);
+  const auto report = fld.step(std::numeric_limits<double>::infinity(), fields, state);
+  auto T = Kokkos::create_mirror_view_and_copy(HostSpace(), state.T);
+  double worst = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) worst = std::max(worst, std::fabs(T(i, j) / 50.0 - 1.0));
+  EXPECT_LE(worst, 1e-12);
+  EXPECT_EQ(report.total_iterations(), 0);
+}
+
+// ---- D3 -------------------------------------------------------------------
+
+mesh::GridSpec planar_patch(int n) {
+  mesh::GridSpec s;
+  s.nr = n;
+  s.ntheta = n;
+  s.r_edges = mesh::linear_edges(1.0, 3.0, n);
+  s.theta_edges = mesh::linear_edges(-0.6, 0.6, n);
+  s.geometry = mesh::Geometry::Planar;
+  s.r_log = false;
+  return s;
+}
+
+/// E = A exp(-((R - 2)^2 + Z^2) / (2 s^2)) with s^2 = s0^2 + 2 D t, A = s0^2 / s^2:
+/// the 2D heat kernel, as a function of the cell centres.
+double gaussian(double R, double Z, double s0, double D, double t) {
+  const double s2 = s0 * s0 + 2.0 * D * t;
+  return s0 * s0 / s2 * std::exp(-((R - 2.0) * (R - 2.0) + Z * Z) / (2.0 * s2));
+}
+
+void set_gaussian(const mesh::Grid& grid, const RealView3& E, double s0) {
+  auto h = Kokkos::create_mirror_view(E);
+  auto Zc = Kokkos::create_mirror_view_and_copy(HostSpace(), grid.Zc);
+  for (std::size_t i = 0; i < h.extent(0); ++i)
+    for (std::size_t j = 0; j < h.extent(1); ++j) h(i, j, 0) = gaussian(grid.Rc_h(i), Zc(i, j), s0, 1.0, 0.0);
+  Kokkos::deep_copy(E, h);
+}
+
+/// V-weighted L1 error of the FLD run against the analytic Gaussian at t_end
+/// (D = c / 3 chi = 1 in code units, s0 = 0.15, t_end = s0^2 / 2D: the
+/// variance doubles), with `steps` backward-Euler steps.
+double d3_error(int n, int steps) {
+  const double s0 = 0.15, t_end = s0 * s0 / 2.0;
+  const mesh::Grid grid(planar_patch(n), core::Comm::world());
+  FldSolver fld(grid, reflecting({1e-4, 1.0}, 1e-10), radiation::RadiationConstants{3e4, 1.0});
+  auto fields = fld.make_fields();
+  fill(fields.heat_capacity, 1.0);
+  fill(fields.heating, 0.0);
+  fill(fields.absorption, 0.0);  // no exchange with the matter: pure diffusion of E
+  fill(fields.extinction, 1e4);  // optically thick: lambda -> 1/3, D = c / (3 chi) = 1
+  fill(fields.scattering_source, 0.0);
+  auto state = fld.make_state();
+  fill(state.T, 10.0);
+  set_gaussian(grid, state.E, s0);
+  for (int s = 0; s < steps; ++s) fld.step(t_end / steps, fields, state);
+  auto E = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E);
+  auto Zc = Kokkos::create_mirror_view_and_copy(HostSpace(), grid.Zc);
+  double err = 0.0, norm = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const double exact = gaussian(grid.Rc_h(i), Zc(i, j), s0, 1.0, t_end);
+      err += grid.V_h(i, j) * std::fabs(E(i, j, 0) - exact);
+      norm += grid.V_h(i, j) * exact;
+    }
+  return err / norm;
+}
+
+TEST(FldD3, ThickDiffusionOfAGaussianConvergesAtSecondOrder) {
+  const double e1 = d3_error(24, 8), e2 = d3_error(48, 32), e3 = d3_error(96, 128);
+  const double p1 = std::log2(e1 / e2), p2 = std::log2(e2 / e3);
+  std::cout << "D3: L1 errors " << e1 << ", " << e2 << ", " << e3 << "; orders " << p1 << ", " << p2 << "\n";
+  EXPECT_GE(p1, 1.8);
+  EXPECT_GE(p2, 1.8);
+  EXPECT_LE(e3, 5e-3);
+}
+
+TEST(FldSettings, BadInputIsRefused) {
+  const mesh::Grid grid(disc_patch(), core::Comm::world());
+  const auto cgs = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  auto expect_refused = [&](FldSettings s, const std::string& words) {
+    try {
+      FldSolver fld(grid, s, cgs);
+      FAIL() << "accepted: " << words;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(reflecting({1e-4}, 1e-4), "at least one band");
+  expect_refused(reflecting({1e-3, 1e-4}, 1e-4), "band edges must increase");
+  expect_refused(reflecting({-1.0, 1e-4}, 1e-4), "positive wavelength");
+  FldSettings cold = reflecting({1e-4, 1.0}, 1e-4);
+  cold.boundaries.T_ext = 0.0;
+  expect_refused(cold, "T_ext");
+  expect_refused(reflecting({1e-4, 1.0}, 1.5), "tolerance");
+}
+
+}  // namespace
