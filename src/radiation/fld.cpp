@@ -2,6 +2,7 @@
 #include "mote/radiation/fld.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -144,6 +145,7 @@ FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationCons
   }
   const CellMap map = cell_map(grid, nb_, settings_.boundaries);
   solver_ = std::make_unique<linalg::LinearSolver>("radiation::fld", fld_pattern(map), settings_.solver);
+  T_previous_ = RealView2("radiation::T_previous", grid.nr_total(), grid.nt_total());
   rhs_ = linalg::Vector("radiation::rhs", solver_->pattern().n_rows);
   x_ = linalg::Vector("radiation::x", solver_->pattern().n_rows);
 }
@@ -376,6 +378,32 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   auto report = solver_->solve(rhs_, x_, describe);
   write_back(state);
   return report;
+}
+
+namespace {
+
+/// max over active cells of |T / T_previous - 1|.
+double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_previous) {
+  double worst = 0.0;
+  par_reduce(
+      "radiation::fld_temperature_change", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j, double& m) { m = math::fmax(m, math::fabs(T(i, j) / T_previous(i, j) - 1.0)); },
+      Kokkos::Max<double>(worst));
+  return worst;
+}
+
+}  // namespace
+
+int FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, double max_change, int max_solves) {
+  double change = 0.0;
+  for (int solves = 1; solves <= max_solves; ++solves) {
+    Kokkos::deep_copy(T_previous_, state.T);
+    step(std::numeric_limits<double>::infinity(), fields, state);
+    change = largest_relative_change(grid_, state.T, T_previous_);
+    if (change <= max_change) return solves;
+  }
+  throw std::runtime_error("radiation: the steady state did not settle in " + std::to_string(max_solves) +
+                           " solves (last relative temperature change " + std::to_string(change) + ")");
 }
 
 }  // namespace mote::radiation

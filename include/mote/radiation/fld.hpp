@@ -92,6 +92,12 @@ class FldSolver {
   /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
   linalg::SolveReport step(double dt, const FldFields& fields, FldState& state);
 
+  /// Steady state with the lagged limiter and Planck factors iterated to
+  /// consistency: steps with dt = infinity until no active cell's T changes by
+  /// more than `max_change` (relative). Returns the number of solves; throws
+  /// std::runtime_error after `max_solves` (state holds the last iterate).
+  int relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6, int max_solves = 30);
+
   /// Planck factors f^b(T) at the active cells (nr_total, nt_total, nb) of the last step.
   const RealView3& planck_factors() const { return planck_; }
   /// External field E_ext^b at the open sides.
@@ -112,6 +118,7 @@ class FldSolver {
   std::vector<mesh::DiffusionCoefficients> coef_;
   std::unique_ptr<linalg::LinearSolver> solver_;
   linalg::Vector rhs_, x_;
+  RealView2 T_previous_;
 };
 
 }  // namespace mote::radiation

@@ -1,0 +1,121 @@
+// D2 (VALIDATION.md): optically thin grey grains around a blackbody star reach
+// T = T_star (R_star / 2 r)^(1/2) (r the spherical radius) to 1 % in the
+// steady state of the FLD system heated by the ray-traced starlight
+// (RBO24 eq. 45), with open outer sides; and the ray tracing conserves energy:
+// the power absorbed in the grid equals L (1 - exp(-tau_ray)) summed over the
+// rays' solid angles, and an opaque shell takes all the light.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "mote/core/units.hpp"
+#include "mote/radiation/fld.hpp"
+#include "mote/radiation/irradiation.hpp"
+
+namespace {
+
+using namespace mote;
+using radiation::RadiationBoundary;
+
+mesh::GridSpec thin_disc() {
+  mesh::GridSpec s;
+  s.nr = 40;
+  s.ntheta = 16;
+  s.r_edges = mesh::log_edges(1.0 * units::cgs::au, 50.0 * units::cgs::au, s.nr);
+  s.theta_edges = mesh::linear_edges(0.0, 0.4, s.ntheta);
+  return s;
+}
+
+std::vector<double> stellar_bins() {  // 60 log bins, 0.1 um - 3 mm
+  std::vector<double> e;
+  for (int k = 0; k <= 60; ++k) e.push_back(1e-5 * std::pow(3e4, k / 60.0));
+  return e;
+}
+
+const std::vector<double> fld_bands = {1e-5, 1e-4, 1e-3, 1e-2, 0.3};
+
+radiation::Star sun_like() { return {2.0 * units::cgs::R_sun, 4000.0}; }
+
+/// Total power absorbed and scattered in the active cells (per radian of azimuth).
+double absorbed_power(const mesh::Grid& grid, const RealView2& heating, const RealView3& scattering) {
+  auto S = Kokkos::create_mirror_view_and_copy(HostSpace(), heating);
+  auto Ss = Kokkos::create_mirror_view_and_copy(HostSpace(), scattering);
+  double P = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      P += grid.V_h(i, j) * S(i, j);
+      for (std::size_t b = 0; b < Ss.extent(2); ++b) P += grid.V_h(i, j) * Ss(i, j, b);
+    }
+  return P;
+}
+
+TEST(Irradiation, OpaqueGridTakesAllTheLight) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  radiation::StellarIrradiation star(grid, sun_like(), stellar_bins(), fld_bands, constants);
+  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), star.bins()),
+      abs("abs", grid.nr_total(), grid.nt_total(), star.bins());
+  Kokkos::deep_copy(ext, 1e-9);  // tau ~ 1e-9 x 7e14 cm ~ 7e5 along every ray
+  Kokkos::deep_copy(abs, 0.5e-9);
+  RealView2 heating("S", grid.nr_total(), grid.nt_total());
+  RealView3 scattering("Ssca", grid.nr_total(), grid.nt_total(), 4);
+  star.heat(ext, abs, heating, scattering);
+  const double L = sun_like().luminosity(constants);
+  const double omega = std::sin(0.4);  // solid angle of theta in [0, 0.4] per radian of azimuth
+  double L_bins = 0.0;
+  for (double l : star.bin_luminosities()) L_bins += l;
+  EXPECT_NEAR(L_bins / L, 1.0, 1e-13);
+  EXPECT_NEAR(absorbed_power(grid, heating, scattering) / (L * omega / (4.0 * M_PI)), 1.0, 1e-12);
+  // albedo 1/2: half heats, half is scattered
+  auto S = Kokkos::create_mirror_view_and_copy(HostSpace(), heating);
+  auto Ss = Kokkos::create_mirror_view_and_copy(HostSpace(), scattering);
+  const int i = grid.i_begin(), j = grid.j_begin();
+  EXPECT_NEAR(Ss(i, j, 0) + Ss(i, j, 1) + Ss(i, j, 2) + Ss(i, j, 3), S(i, j), 1e-12 * S(i, j));
+}
+
+TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  radiation::StellarIrradiation star(grid, sun_like(), stellar_bins(), fld_bands, constants);
+  const double k = 1e-20;  // rho kappa (1/cm): tau through the grid ~ 7e-6, grey, no scattering
+  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), star.bins());
+  Kokkos::deep_copy(ext, k);
+  radiation::FldSettings settings;
+  settings.band_edges_cm = fld_bands;
+  settings.boundaries.inner = settings.boundaries.outer = settings.boundaries.upper = RadiationBoundary::Open;
+  settings.boundaries.lower = RadiationBoundary::Reflecting;
+  settings.boundaries.T_ext = 3.0;
+  settings.solver.tolerance = 1e-8;
+  radiation::FldSolver fld(grid, settings, constants);
+  auto fields = fld.make_fields();
+  star.heat(ext, ext, fields.heating, fields.scattering_source);
+  Kokkos::deep_copy(fields.heat_capacity, 1.0);
+  Kokkos::deep_copy(fields.absorption, k);
+  Kokkos::deep_copy(fields.extinction, k);
+  auto state = fld.make_state();
+  Kokkos::deep_copy(state.T, 100.0);
+  Kokkos::deep_copy(state.E, 0.0);
+  const int solves = fld.relax_to_steady_state(fields, state);
+  auto T = Kokkos::create_mirror_view_and_copy(HostSpace(), state.T);
+  const double R_star = sun_like().radius, T_star = sun_like().T_eff;
+  double worst = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const double r = grid.Rc_h(i) / std::cos(grid.tc_h(j));
+      const double expected = T_star * std::sqrt(R_star / (2.0 * r));
+      worst = std::max(worst, std::fabs(T(i, j) / expected - 1.0));
+    }
+  std::cout << "D2: " << solves << " steady-state solves; max |T / T_thin - 1| = " << worst << "\n";
+  EXPECT_LE(worst, 0.01);
+}
+
+TEST(Irradiation, BadStarIsRefused) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  EXPECT_THROW(radiation::StellarIrradiation(grid, {0.0, 4000.0}, stellar_bins(), fld_bands, constants),
+               std::invalid_argument);
+  EXPECT_THROW(radiation::StellarIrradiation(grid, sun_like(), {1e-4}, fld_bands, constants), std::invalid_argument);
+}
+
+}  // namespace
