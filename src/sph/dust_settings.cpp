@@ -34,6 +34,13 @@ void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
     check.fail("dust.s_max", "must exceed " + check.quote("dust.s_min"));
 }
 
+/// PdV work from div v_g with drag heating needs an energy equation.
+void check_pdv(const core::Deck& d, core::DeckCheck& check) {
+  if (d.has_table("dust") && d.has_table("sph") && d.string("dust.pdv") == "gas" && d.string("sph.eos") != "adiabatic")
+    check.fail("dust.pdv",
+               "\"gas\" needs " + check.quote("sph.eos") + " to be \"adiabatic\" (no PdV work when isothermal)");
+}
+
 }  // namespace
 
 void DustSettings::declare(core::DeckSchema& s) {
@@ -118,6 +125,7 @@ void DustSettings::declare(core::DeckSchema& s) {
           "Snapshots also hold dust_velocity: v_dj = v_g + Dv_j of every species (HPL18 eq. 24-25), "
           "3N components per particle, v_dj along axis d in column 3 j + d.");
   s.rule(check_species_lists);
+  s.rule(check_pdv);
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {

@@ -50,8 +50,12 @@ CROSS_KEY_CASES = [
       "command line 'grid.theta_max=-0.6': key 'grid.theta_max': must exceed grid.theta_min = -0.523598775598",
       "command line 'dust.sizes=[1.0, 2.0]': key 'dust.sizes': disc_pulse evolves one dust species"]),
     ("sph_dustywave", ["dust.species=3", "dust.K=[1.0, 2.0]", "sph.eos=isothermal"],
-     ["(2 errors)", "key 'dust.K': needs 1 or 3 entries (dust.species = 3 (command line 'dust.species=3')), got 2",
+     ["(3 errors)", "key 'dust.K': needs 1 or 3 entries (dust.species = 3 (command line 'dust.species=3')), got 2",
+      "key 'dust.pdv': \"gas\" needs sph.eos = \"isothermal\" (command line 'sph.eos=isothermal') to be",
       "command line 'sph.eos=isothermal': key 'sph.eos': sph_dustywave needs \"adiabatic\""]),
+    ("viscous_ring", ["gas.Sigma_index=0.5", "gas.R_c=20"],
+     ["(2 errors)", "command line 'gas.R_c=20': key 'gas.R_c': viscous_ring needs it equal to gas.R_ref = 10.0 (",
+      "key 'gas.Sigma_index': viscous_ring needs it equal to"]),
 ]
 
 
