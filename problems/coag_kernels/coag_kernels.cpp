@@ -73,6 +73,16 @@ class CoagKernels final : public coag::StandaloneCells {
   Params p_;
 };
 
+/// An analytic kernel on a mass range of positive width.
+void check_analytic(const mote::core::Deck& d, mote::core::DeckCheck& check) {
+  if (!d.has_table("coagulation"))
+    check.fail_missing_table("coagulation", "coag_kernels needs it, with kernel = constant, additive or product");
+  else if (d.string("coagulation.kernel") == "physical")
+    check.fail("coagulation.kernel", "coag_kernels needs constant, additive or product");
+  if (!(d.real("analytic.x_max") > d.real("analytic.x_min")))
+    check.fail("analytic.x_max", "must exceed " + check.quote("analytic.x_min"));
+}
+
 void declare(mote::core::DeckSchema& s) {
   coag::declare(s);
   s.table("analytic", "Exponential initial distribution and mass grid (units of m0).");
@@ -87,13 +97,12 @@ void declare(mote::core::DeckSchema& s) {
       .min(0.0)
       .unit("code time")
       .doc("Time between coagulation calls; 0 = one call per output interval.");
+  s.rule(check_analytic);
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto s = coag::settings_from_deck(d);
-  if (s.kernel == "physical")
-    throw mote::core::DeckError("coag_kernels: coagulation.kernel must be constant, additive or product");
   Params p;
   p.kernel = s.kernel;
   p.K0 = s.kernel_coefficient;
@@ -104,7 +113,6 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
   p.bins_per_decade = d.real("analytic.bins_per_decade");
   p.cells = static_cast<int>(d.integer("analytic.cells"));
   p.call_interval = d.real("analytic.call_interval");
-  if (!(p.x_max > p.x_min)) throw mote::core::DeckError("analytic.x_max must exceed analytic.x_min");
   const int n = static_cast<int>(std::lround(std::log10(p.x_max / p.x_min) * p.bins_per_decade)) + 1;
   const auto grid = coag::MassGrid::from_masses(p.x_min * p.m0, p.x_max * p.m0, n);
   return std::make_unique<CoagKernels>(p, s, grid);

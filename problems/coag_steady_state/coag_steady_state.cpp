@@ -93,6 +93,15 @@ class CoagSteadyState final : public coag::StandaloneCells {
   }
 };
 
+/// The physical kernel on surface densities.
+void check_surface_growth(const mote::core::Deck& d, mote::core::DeckCheck& check) {
+  if (!d.has_table("coagulation")) return check.fail_missing_table("coagulation", "coag_steady_state needs it");
+  if (d.string("coagulation.kernel") != "physical")
+    check.fail("coagulation.kernel", "coag_steady_state needs \"physical\"");
+  if (!d.boolean("coagulation.vertically_integrated"))
+    check.fail("coagulation.vertically_integrated", "coag_steady_state evolves surface densities: set it to true");
+}
+
 void declare(mote::core::DeckSchema& s) {
   coag::declare(s);
   s.table("disc", "The disc annulus whose dust grows (cgs).");
@@ -118,15 +127,12 @@ void declare(mote::core::DeckSchema& s) {
       .min(0.0)
       .unit("s")
       .doc("Time between coagulation calls; 0 = one call per output interval.");
+  s.rule(check_surface_growth);
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   auto s = coag::settings_from_deck(d);
-  if (s.kernel != "physical") throw mote::core::DeckError("coag_steady_state: coagulation.kernel must be \"physical\"");
-  if (!s.vertically_integrated)
-    throw mote::core::DeckError(
-        "coag_steady_state evolves surface densities: set coagulation.vertically_integrated = true");
   Params p;
   p.radius = d.real("disc.radius") * cgs::au;
   p.m_star = d.real("disc.star_mass") * cgs::M_sun;

@@ -128,6 +128,14 @@ class DiscPulse final : public io::Simulation {
   double tau_ = 0.0;
 };
 
+/// The analytic pulse is one species advected and diffused, with no drag and no gravity.
+void check_pure_transport(const core::Deck& d, core::DeckCheck& check) {
+  if (d.real_array("dust.sizes").size() != 1)
+    check.fail("dust.sizes", "disc_pulse evolves one dust species: give one value");
+  for (const char* key : {"dust.drag", "dust.gravity"})
+    if (d.boolean(key)) check.fail(key, "disc_pulse needs false");
+}
+
 void declare(core::DeckSchema& s) {
   mesh::GridSpec::declare(s);
   mesh::Boundaries::declare(s);
@@ -144,15 +152,13 @@ void declare(core::DeckSchema& s) {
   s.real("pulse.t0").default_value(0.1).greater_than(0.0).unit("code time").doc("Pulse time at the start of the run.");
   s.real("pulse.vx").default_value(5.0).unit("code velocity").doc("Velocity in R.");
   s.real("pulse.vy").default_value(2.0).unit("code velocity").doc("Velocity in Z.");
+  s.rule(check_pure_transport);
 }
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto spec = mesh::GridSpec::from_deck(d);
   auto dust = disc::DustSettings::from_deck(d, ctx.units, disc::StellarGravity{0.0, false});
-  if (dust.sizes.size() != 1)
-    throw core::DeckError("disc_pulse evolves one dust species: give one value in dust.sizes");
-  if (dust.drag || dust.gravity) throw core::DeckError("disc_pulse needs dust.drag = false and dust.gravity = false");
   Pulse p;
   p.A = d.real("pulse.amplitude");
   p.D = d.real("pulse.diffusivity");

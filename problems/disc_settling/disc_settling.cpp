@@ -21,6 +21,14 @@ namespace {
 
 using namespace mote;
 
+/// One initial dust-to-gas ratio per species, or none (0.01 each).
+void check_dust_to_gas(const core::Deck& d, core::DeckCheck& check) {
+  const size_t n = d.real_array("settling.dust_to_gas").size(), ns = d.real_array("dust.sizes").size();
+  if (n != 0 && n != ns)
+    check.fail("settling.dust_to_gas",
+               mote::logging::cat("has ", n, " values for ", ns, " dust species (", check.quote("dust.sizes"), ")"));
+}
+
 void declare(core::DeckSchema& s) {
   disc::DiscSimulation::declare(s);
   s.table("settling", "Initial dust of the settling test (RBO24 sec. 3.6).");
@@ -28,6 +36,7 @@ void declare(core::DeckSchema& s) {
       .default_value(std::vector<double>{})
       .greater_than(0.0)
       .doc("Initial (well-mixed) dust-to-gas ratio per species; empty: 0.01 for every species.");
+  s.rule(check_dust_to_gas);
 }
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
@@ -35,9 +44,6 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const size_t ns = d.real_array("dust.sizes").size();
   auto eps = d.real_array("settling.dust_to_gas");
   if (eps.empty()) eps.assign(ns, 0.01);
-  if (eps.size() != ns)
-    throw core::DeckError(
-        mote::logging::cat("settling.dust_to_gas has ", eps.size(), " values for ", ns, " dust species"));
   return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units,
                                                 disc::DiscSimulation::well_mixed(eps, d.real("dust.floor")));
 }

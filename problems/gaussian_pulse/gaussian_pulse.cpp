@@ -117,6 +117,7 @@ class GaussianPulse final : public mote::io::Simulation {
                       2.0 * p_.D * (1.0 / (p_.dx() * p_.dx()) + 1.0 / (p_.dy() * p_.dy()));
     return rate > 0 ? p_.cfl / rate : 1e30;
   }
+  std::string dt_limit() const override { return "advection-diffusion CFL (scheme.cfl)"; }
 
   void advance(double /*time*/, double dt) override {
     // SSP-RK2: u1 = u + dt L(u);  u_new = (u + u1 + dt L(u1)) / 2
@@ -292,6 +293,14 @@ class GaussianPulse final : public mote::io::Simulation {
   mote::HostView<Real*> halo_send_h_, halo_recv_h_;
 };
 
+/// The domain must have a positive extent in x and y.
+void check_extent(const mote::core::Deck& d, mote::core::DeckCheck& check) {
+  if (!(d.real("grid.x_max") > d.real("grid.x_min")))
+    check.fail("grid.x_max", "must exceed " + check.quote("grid.x_min"));
+  if (!(d.real("grid.y_max") > d.real("grid.y_min")))
+    check.fail("grid.y_max", "must exceed " + check.quote("grid.y_min"));
+}
+
 void declare(mote::core::DeckSchema& s) {
   s.table("grid", "Periodic 2D Cartesian grid.");
   s.integer("grid.nx").default_value(128LL).min(4).doc("Cells in x.");
@@ -323,6 +332,7 @@ void declare(mote::core::DeckSchema& s) {
       .default_value(std::string("none"))
       .one_of({"none", "vanleer", "mc"})
       .doc("Slope limiter (none = Fromm, unlimited second order).");
+  s.rule(check_extent);
 }
 
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
@@ -334,8 +344,6 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
   p.x_max = d.real("grid.x_max");
   p.y_min = d.real("grid.y_min");
   p.y_max = d.real("grid.y_max");
-  if (!(p.x_max > p.x_min) || !(p.y_max > p.y_min))
-    throw mote::core::DeckError("grid: x_max must exceed x_min and y_max must exceed y_min");
   p.vx = d.real("transport.vx");
   p.vy = d.real("transport.vy");
   p.D = d.real("transport.diffusivity");

@@ -65,6 +65,8 @@ std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const co
 void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
   sph::DustSettings::declare(s);
+  s.rule(io::requires_table("sph_dustsettle", "dust"));
+  s.rule(io::requires_choice("sph_dustsettle", "dust.drag", "epstein"));
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
   s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
   s.integer("settle.dim")
@@ -100,9 +102,7 @@ void declare(core::DeckSchema& s) {
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   if (ctx.comm.size() > 1) throw core::DeckError("sph_dustsettle: the SPH engine runs on one MPI rank");
-  if (!d.has_table("dust")) throw core::DeckError("sph_dustsettle needs a [dust] table");
   sph::DustSettings ds = sph::DustSettings::from_deck(d);
-  if (ds.drag != sph::DragLaw::Epstein) throw core::DeckError("sph_dustsettle needs dust.drag = \"epstein\"");
   if (d.string("settle.grain_units") == "cgs") {
     for (auto& s : ds.sizes) s /= ctx.units.length;
     ds.rho_grain /= ctx.units.density();

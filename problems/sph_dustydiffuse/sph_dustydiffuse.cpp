@@ -27,7 +27,8 @@ class DiffuseSimulation final : public sph::SphSimulation {
 
 void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
-  sph::DustSettings::declare(s);
+  sph::declare_dust_problem(s, "sph_dustydiffuse", sph::DragLaw::ConstantStoppingTime, false);
+  s.rule(io::requires_choice("sph_dustydiffuse", "sph.eos", "isothermal"));
   s.table("dustydiffuse", "Dust diffusion with fixed particles (PL15 sec. 4.3).");
   s.integer("dustydiffuse.n").default_value(50LL).min(4).doc("Particles per unit length along x (spacing 1 / n).");
   s.string("dustydiffuse.lattice")
@@ -51,8 +52,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   if (ctx.comm.size() > 1) throw core::DeckError("sph_dustydiffuse: the SPH engine runs on one MPI rank");
   const auto cfg = sph::config_from_deck(d, 3);
-  if (cfg.eos != sph::EosType::Isothermal) throw core::DeckError("sph_dustydiffuse needs sph.eos = \"isothermal\"");
-  const auto ds = sph::dust_settings_for(d, "sph_dustydiffuse", sph::DragLaw::ConstantStoppingTime, false);
+  const auto ds = sph::DustSettings::from_deck(d);
   sph::DustyDiffuse dd;
   dd.n = static_cast<int>(d.integer("dustydiffuse.n"));
   dd.close_packed = d.string("dustydiffuse.lattice") == "close_packed";

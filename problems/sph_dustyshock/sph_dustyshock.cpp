@@ -17,7 +17,8 @@ using namespace mote;
 
 void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
-  sph::DustSettings::declare(s);
+  sph::declare_dust_problem(s, "sph_dustyshock", sph::DragLaw::ConstantK, true);
+  s.rule(io::requires_choice("sph_dustyshock", "sph.eos", "adiabatic"));
   s.table("dustyshock", "Dusty Sod shock tube (PL15 sec. 4.2); gas states.");
   s.real("dustyshock.dx_left")
       .default_value(0.001)
@@ -35,8 +36,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   if (ctx.comm.size() > 1) throw core::DeckError("sph_dustyshock: the SPH engine runs on one MPI rank");
   const auto cfg = sph::config_from_deck(d, 1);
-  if (cfg.eos != sph::EosType::Adiabatic) throw core::DeckError("sph_dustyshock needs sph.eos = \"adiabatic\"");
-  const auto ds = sph::dust_settings_for(d, "sph_dustyshock", sph::DragLaw::ConstantK, true);
+  const auto ds = sph::DustSettings::from_deck(d);
   sph::DustyShock sh;
   sh.dx_left = d.real("dustyshock.dx_left");
   sh.rhog_left = d.real("dustyshock.rhog_left");

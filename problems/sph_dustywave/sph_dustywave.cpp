@@ -17,7 +17,8 @@ using namespace mote;
 
 void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
-  sph::DustSettings::declare(s);
+  sph::declare_dust_problem(s, "sph_dustywave", sph::DragLaw::ConstantK, true);
+  s.rule(io::requires_choice("sph_dustywave", "sph.eos", "adiabatic"));
   s.table("dustywave", "Linear dusty wave (PL15 sec. 4.1).");
   s.integer("dustywave.n").default_value(100LL).min(8).doc("Number of particles in [0, 1).");
   s.real("dustywave.amplitude")
@@ -31,8 +32,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   if (ctx.comm.size() > 1) throw core::DeckError("sph_dustywave: the SPH engine runs on one MPI rank");
   const auto cfg = sph::config_from_deck(d, 1);
-  if (cfg.eos != sph::EosType::Adiabatic) throw core::DeckError("sph_dustywave needs sph.eos = \"adiabatic\"");
-  const auto ds = sph::dust_settings_for(d, "sph_dustywave", sph::DragLaw::ConstantK, true);
+  const auto ds = sph::DustSettings::from_deck(d);
   sph::DustyWave w;
   w.n = static_cast<int>(d.integer("dustywave.n"));
   w.amplitude = d.real("dustywave.amplitude");

@@ -25,13 +25,25 @@ struct SelfSimilar {
   }
 };
 
+/// The self-similar solution holds for nu ~ R^gamma, Sigma ~ R^-gamma (gamma < 2) and R_c = R_1.
+void check_self_similar(const mote::core::Deck& d, mote::core::DeckCheck& check) {
+  if (d.string("gas.viscosity") != "power_law") check.fail("gas.viscosity", "viscous_ring needs \"power_law\"");
+  const double gamma = d.real("gas.nu_index");
+  if (!(gamma < 2.0)) check.fail("gas.nu_index", "viscous_ring needs it < 2");
+  if (std::fabs(d.real("gas.Sigma_index") - gamma) > 1e-14)
+    check.fail("gas.Sigma_index", "viscous_ring needs it equal to " + check.quote("gas.nu_index"));
+  if (std::fabs(d.real("gas.R_c") - d.real("gas.R_ref")) > 1e-14 * d.real("gas.R_ref"))
+    check.fail("gas.R_c", "viscous_ring needs it equal to " + check.quote("gas.R_ref"));
+}
+
+void declare(mote::core::DeckSchema& s) {
+  mote::disc::GasSimulation::declare(s);
+  s.rule(check_self_similar);
+}
+
 std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx) {
   auto sim = std::make_unique<mote::disc::GasSimulation>(ctx.deck, ctx.comm, ctx.units);
   const auto& c = sim->gas().config();
-  if (c.viscosity != mote::disc::ViscosityModel::PowerLaw || std::fabs(c.Sigma_index - c.nu_index) > 1e-14 ||
-      std::fabs(c.R_c - c.R_ref) > 1e-14 * c.R_ref || !(c.nu_index < 2.0))
-    throw mote::core::DeckError(
-        "viscous_ring needs gas.viscosity = \"power_law\", gas.Sigma_index = gas.nu_index < 2 and gas.R_c = gas.R_ref");
   const double gamma = c.nu_index;
   const SelfSimilar lbp{c.Sigma0, c.R_ref, gamma, c.R_ref * c.R_ref / (3.0 * (2.0 - gamma) * (2.0 - gamma) * c.nu0)};
   mote::logging::info(mote::logging::format("viscous_ring: gamma = %g, R_1 = %g, nu_1 = %g, t_s = %.10g", gamma,
@@ -46,6 +58,6 @@ std::unique_ptr<mote::io::Simulation> create(const mote::io::ProblemContext& ctx
 int main(int argc, char** argv) {
   return mote::io::run_problem(
       argc, argv,
-      {"viscous_ring", "Lynden-Bell & Pringle self-similar viscous disc (1D viscous evolution, eq. 26)",
-       mote::disc::GasSimulation::declare, create});
+      {"viscous_ring", "Lynden-Bell & Pringle self-similar viscous disc (1D viscous evolution, eq. 26)", declare,
+       create});
 }

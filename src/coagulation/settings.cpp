@@ -3,6 +3,15 @@
 
 namespace mote::coagulation {
 
+namespace {
+
+void check_size_range(const core::Deck& d, core::DeckCheck& check) {
+  if (d.has_table("coagulation") && !(d.real("coagulation.a_max") > d.real("coagulation.a_min")))
+    check.fail("coagulation.a_max", "must exceed " + check.quote("coagulation.a_min"));
+}
+
+}  // namespace
+
 void declare(core::DeckSchema& s) {
   s.table("coagulation", "Grain growth and fragmentation (RBO24 sec. 5), integrated independently in every cell.",
           true);
@@ -73,6 +82,7 @@ void declare(core::DeckSchema& s) {
       .default_value(2.4)
       .greater_than(0.0)
       .doc("Mean molecular weight of the gas (k_B T = mu m_H c_s^2, mean free path).");
+  s.rule(check_size_range);
 }
 
 CoagulationSettings settings_from_deck(const core::Deck& d) {
@@ -95,7 +105,6 @@ CoagulationSettings settings_from_deck(const core::Deck& d) {
   s.species = static_cast<int>(d.integer("coagulation.species"));
   s.rho_m = d.real("coagulation.rho_m");
   s.mu = d.real("coagulation.mu");
-  if (!(s.a_max > s.a_min)) throw core::DeckError("coagulation.a_max must exceed coagulation.a_min");
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 
@@ -36,7 +37,8 @@ void StandaloneCells::advance(double, double dt) {
   substeps_ += st.substeps;
   rejections_ += st.rejections;
   if (st.failed_cells > 0)
-    throw std::runtime_error(logging::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
+    throw core::NumericalError(
+        logging::cat("coagulation failed in ", st.failed_cells, " cells (max_substeps reached)"));
   elapsed_ += dt;
 }
 

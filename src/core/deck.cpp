@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -131,7 +132,7 @@ class Validator {
     for (const auto& spec : schema_.keys()) {
       const auto* table = schema_.find_table(spec.table());
       const bool active = !table->optional || present(spec.table());
-      if (!active || values_.count(spec.dotted())) continue;
+      if (!active || values_.count(spec.dotted()) || rejected(spec.dotted())) continue;
       if (spec.required())
         errors_.push_back(file_ + ": missing required key '" + spec.dotted() + "' (" + expected_text(spec) + ")" +
                           (spec.doc_text().empty() ? "" : ": " + spec.doc_text()));
@@ -140,6 +141,11 @@ class Validator {
 
   bool present(const std::string& table) const {
     return std::find(tables_present_.begin(), tables_present_.end(), table) != tables_present_.end();
+  }
+
+  /// True when `dotted` was given but its value was refused (its error is reported).
+  bool rejected(const std::string& dotted) const {
+    return std::find(rejected_.begin(), rejected_.end(), dotted) != rejected_.end();
   }
 
   const std::vector<std::string>& errors() const { return errors_; }
@@ -155,26 +161,39 @@ class Validator {
       errors_.push_back(msg);
       return;
     }
-    auto value = convert(node, spec->type());
-    if (!value) {
-      errors_.push_back(where + ": key '" + dotted + "': expected " + expected_text(*spec) + ", got " +
-                        describe_node(node));
+    if (const std::string problem = value_problem(*spec, node); !problem.empty()) {
+      errors_.push_back(where + ": key '" + dotted + "': " + problem);
+      rejected_.push_back(dotted);
       return;
     }
-    if (auto violation = spec->range_violation(*value); !violation.empty()) {
-      errors_.push_back(where + ": key '" + dotted + "': value " + value_to_toml(*value) +
-                        " is out of range; expected " + expected_text(*spec));
-      return;
-    }
-    values_[dotted] = Located{*value, where};
+    values_[dotted] = Located{*convert(node, spec->type()), where};
+  }
+
+  /// Empty if `node` is a valid value of `spec`; otherwise what is wrong and what was expected.
+  static std::string value_problem(const KeySpec& spec, const toml::node& node) {
+    const auto value = convert(node, spec.type());
+    if (!value) return "expected " + expected_text(spec) + ", got " + describe_node(node);
+    if (const auto why = spec.type_violation(*value); !why.empty())
+      return "value " + value_to_toml(*value) + " " + why + "; expected " + expected_text(spec);
+    if (!spec.range_violation(*value).empty())
+      return "value " + value_to_toml(*value) + " is out of range; expected " + expected_text(spec);
+    return {};
   }
 
   const DeckSchema& schema_;
   std::string file_;
   std::vector<std::string> errors_;
   std::vector<std::string> tables_present_;
+  std::vector<std::string> rejected_;
   std::map<std::string, Located> values_;
 };
+
+std::string error_report(const std::string& source_name, const std::vector<std::string>& errors) {
+  std::string msg = "invalid deck " + source_name + " (" + std::to_string(errors.size()) + " error" +
+                    (errors.size() > 1 ? "s" : "") + "):";
+  for (const auto& e : errors) msg += "\n  " + e;
+  return msg;
+}
 
 }  // namespace
 
@@ -192,28 +211,47 @@ Deck Deck::parse(const std::string& text, const std::string& source_name, const 
   v.add_file_table(root);
   for (const auto& o : overrides) v.add_override(o);
   v.finish();
-  if (!v.errors().empty()) {
-    std::string msg = "invalid deck " + source_name + " (" + std::to_string(v.errors().size()) + " error" +
-                      (v.errors().size() > 1 ? "s" : "") + "):";
-    for (const auto& e : v.errors()) msg += "\n  " + e;
-    throw DeckError(msg);
-  }
   Deck deck;
   deck.source_ = source_name;
   deck.schema_ = &schema;
   for (const auto& t : schema.tables())
     if (!t.optional || v.present(t.name)) deck.active_tables_.push_back(t.name);
   for (const auto& spec : schema.keys()) {
-    if (std::find(deck.active_tables_.begin(), deck.active_tables_.end(), spec.table()) == deck.active_tables_.end())
-      continue;
+    if (!deck.has_table(spec.table())) continue;
     const auto it = v.values().find(spec.dotted());
-    deck.values_[spec.dotted()] = it != v.values().end() ? it->second.value : *spec.default_opt();
+    if (it != v.values().end()) {
+      deck.values_[spec.dotted()] = it->second.value;
+      deck.where_[spec.dotted()] = it->second.where;
+    } else if (!v.rejected(spec.dotted()) && spec.default_opt()) {
+      deck.values_[spec.dotted()] = *spec.default_opt();
+      deck.where_[spec.dotted()] = source_name + " (default)";
+    } else {
+      deck.rejected_.push_back(spec.dotted());
+    }
     deck.units_[spec.dotted()] = spec.unit_text();
   }
+  std::vector<std::string> errors = v.errors();
+  for (const auto& e : deck.check_rules()) errors.push_back(e);
+  if (!errors.empty()) throw DeckError(error_report(source_name, errors));
   return deck;
 }
 
+std::vector<std::string> Deck::check_rules() const {
+  DeckCheck check(*this);
+  for (const auto& rule : schema_->rules()) {
+    try {
+      rule(*this, check);
+    } catch (const RejectedKey&) {
+      // The rule reads a key whose own error is already reported.
+    }
+  }
+  return check.errors();
+}
+
 Deck Deck::load(const std::string& path, const DeckSchema& schema, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw DeckError("cannot read deck file '" + path + "': is a directory, not a TOML file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DeckError("cannot read deck file '" + path + "': " + std::strerror(errno));
   std::ostringstream text;
@@ -227,6 +265,8 @@ bool Deck::has_table(const std::string& table) const {
 }
 
 const Value& Deck::value(const std::string& dotted, ValueType type) const {
+  if (std::find(rejected_.begin(), rejected_.end(), dotted) != rejected_.end())
+    throw RejectedKey("deck key '" + dotted + "' has no valid value");
   const auto it = values_.find(dotted);
   if (it == values_.end())
     throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
@@ -248,6 +288,27 @@ const std::string& Deck::string(const std::string& dotted) const {
 }
 const std::vector<double>& Deck::real_array(const std::string& dotted) const {
   return std::get<std::vector<double>>(value(dotted, ValueType::RealArray));
+}
+
+const std::string& Deck::where(const std::string& dotted) const {
+  const auto it = where_.find(dotted);
+  if (it == where_.end())
+    throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
+  return it->second;
+}
+
+void DeckCheck::fail(const std::string& dotted, const std::string& expected) {
+  errors_.push_back(deck_.where(dotted) + ": key '" + dotted + "': " + expected);
+}
+
+void DeckCheck::fail_missing_table(const std::string& table, const std::string& why) {
+  errors_.push_back(deck_.source() + ": missing table [" + table + "]: " + why);
+}
+
+std::string DeckCheck::quote(const std::string& other) const {
+  const auto it = deck_.values_.find(other);
+  if (it == deck_.values_.end()) throw Deck::RejectedKey("deck key '" + other + "' has no valid value");
+  return other + " = " + value_to_toml(it->second) + " (" + deck_.where(other) + ")";
 }
 
 std::string Deck::to_toml() const {

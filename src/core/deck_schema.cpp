@@ -2,7 +2,9 @@
 #include "mote/core/deck_schema.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -100,6 +102,27 @@ KeySpec& KeySpec::one_of(std::vector<std::string> choices) {
   choices_ = std::move(choices);
   return *this;
 }
+KeySpec& KeySpec::allow_non_finite() {
+  non_finite_allowed_ = true;
+  return *this;
+}
+KeySpec& KeySpec::int64() {
+  int64_ = true;
+  return *this;
+}
+
+std::string KeySpec::type_violation(const Value& value) const {
+  auto finite = [](double x) { return std::isfinite(x); };
+  if (const auto* d = std::get_if<double>(&value); d && !non_finite_allowed_ && !finite(*d)) return "is not finite";
+  if (const auto* a = std::get_if<std::vector<double>>(&value);
+      a && !non_finite_allowed_ && !std::all_of(a->begin(), a->end(), finite))
+    return "holds a value that is not finite";
+  if (const auto* i = std::get_if<long long>(&value); i && !int64_) {
+    constexpr long long lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
+    if (*i < lo || *i > hi) return logging::cat("does not fit the key's C++ type int (", lo, " to ", hi, ")");
+  }
+  return {};
+}
 
 std::string KeySpec::range_text() const {
   std::vector<std::string> parts;
@@ -154,6 +177,7 @@ KeySpec& DeckSchema::integer(const std::string& dotted) { return add(dotted, Val
 KeySpec& DeckSchema::real(const std::string& dotted) { return add(dotted, ValueType::Real); }
 KeySpec& DeckSchema::string(const std::string& dotted) { return add(dotted, ValueType::String); }
 KeySpec& DeckSchema::real_array(const std::string& dotted) { return add(dotted, ValueType::RealArray); }
+void DeckSchema::rule(DeckRule rule) { rules_.push_back(std::move(rule)); }
 
 const TableSpec* DeckSchema::find_table(const std::string& name) const {
   for (const auto& t : tables_)

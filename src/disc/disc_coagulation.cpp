@@ -91,8 +91,8 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
       });
   const auto stats = solver_.integrate(density_, elapsed * ut, coagulation::make_kernel(settings_, mass_grid_, cells_));
   if (stats.failed_cells > 0)
-    throw std::runtime_error(logging::cat("disc coagulation failed in ", stats.failed_cells,
-                                          " cells (coagulation.max_substeps reached or vanishing sub-step)"));
+    throw core::NumericalError(logging::cat("disc coagulation failed in ", stats.failed_cells,
+                                            " cells (coagulation.max_substeps reached or vanishing sub-step)"));
   par_for(
       "disc::coagulation_store", 0, cells, 0, ns, KOKKOS_LAMBDA(int c, int s) {
         const int i = ib + c / nt, j = jb + c % nt;

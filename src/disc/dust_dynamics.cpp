@@ -14,6 +14,15 @@ namespace mote::disc {
 
 namespace {
 
+/// At least one species, and one Schmidt number per species (or none: all 1).
+void check_species(const core::Deck& d, core::DeckCheck& check) {
+  const size_t ns = d.real_array("dust.sizes").size(), nsc = d.real_array("dust.schmidt").size();
+  if (ns == 0) check.fail("dust.sizes", "at least one species is needed");
+  if (nsc != 0 && nsc != ns)
+    check.fail("dust.schmidt",
+               logging::cat("has ", nsc, " values for ", ns, " species (", check.quote("dust.sizes"), ")"));
+}
+
 using View4 = View<Real****>;
 
 /// MDRange over (i, j, s) in [i0, i1) x [j0, j1) x [0, ns).
@@ -59,17 +68,14 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc(
           "Fluxes through the radial faces; false: every column evolves alone (vertical settling tests, RBO24 sec. "
           "3.6).");
+  s.rule(check_species);
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, const StellarGravity& star) {
   DustSettings st;
   for (double a : d.real_array("dust.sizes")) st.sizes.push_back(a / u.length);
-  if (st.sizes.empty()) throw core::DeckError("dust.sizes: at least one species is needed");
   st.schmidt = d.real_array("dust.schmidt");
   if (st.schmidt.empty()) st.schmidt.assign(st.sizes.size(), 1.0);
-  if (st.schmidt.size() != st.sizes.size())
-    throw core::DeckError(
-        logging::cat("dust.schmidt has ", st.schmidt.size(), " values for ", st.sizes.size(), " species"));
   st.rho_grain = d.real("dust.rho_grain") / u.density();
   st.floor = d.real("dust.floor");
   st.cfl_advection = d.real("dust.cfl_advection");

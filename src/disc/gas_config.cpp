@@ -7,6 +7,19 @@
 
 namespace mote::disc {
 
+namespace {
+
+/// The viscosity model needs a positive coefficient.
+void check_viscosity(const core::Deck& d, core::DeckCheck& check) {
+  const std::string& model = d.string("gas.viscosity");
+  if (model == "alpha" && !(d.real("gas.alpha") > 0))
+    check.fail("gas.alpha", "must be > 0 with " + check.quote("gas.viscosity"));
+  if (model == "power_law" && !(d.real("gas.nu0") > 0) && !(d.real("gas.alpha") > 0))
+    check.fail("gas.nu0", "or gas.alpha must be > 0 with " + check.quote("gas.viscosity"));
+}
+
+}  // namespace
+
 GasBoundary gas_boundary(const std::string& name) {
   if (name == "closed") return GasBoundary::Closed;
   if (name == "zero_torque") return GasBoundary::ZeroTorque;
@@ -91,6 +104,7 @@ void GasConfig::declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .unit("code density")
       .doc("Floor of the hydrostatic density.");
+  s.rule(check_viscosity);
 }
 
 void GasConfig::derive(const units::UnitSystem& u, double h_ref) {
@@ -127,10 +141,6 @@ GasConfig GasConfig::from_deck(const core::Deck& d, const units::UnitSystem& u) 
   c.cfl = d.real("gas.cfl");
   c.Sigma_floor = d.real("gas.Sigma_floor");
   c.rho_floor = d.real("gas.rho_floor");
-  if (c.viscosity == ViscosityModel::Alpha && !(c.alpha > 0))
-    throw core::DeckError("gas.alpha must be > 0 with gas.viscosity = \"alpha\"");
-  if (c.viscosity == ViscosityModel::PowerLaw && !(c.nu0 > 0) && !(c.alpha > 0))
-    throw core::DeckError("gas.viscosity = \"power_law\" needs gas.nu0 > 0 or gas.alpha > 0");
   c.derive(u, d.real("gas.h_ref"));
   return c;
 }

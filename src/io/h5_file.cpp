@@ -3,16 +3,18 @@
 
 #include <stdexcept>
 
+#include "mote/core/exit_codes.hpp"
+
 namespace mote::io {
 
 namespace {
 
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5 error: " + what);
+  if (status < 0) throw core::IOError("HDF5 error: " + what);
 }
 
 hid_t check_id(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error("HDF5 error: " + what);
+  if (id < 0) throw core::IOError("HDF5 error: " + what);
   return id;
 }
 
@@ -54,8 +56,8 @@ H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm) : pat
   else
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   if (file_ < 0)
-    throw std::runtime_error("cannot " + std::string(mode == Mode::Create ? "create" : "open") + " HDF5 file '" + path +
-                             "'");
+    throw core::IOError("cannot " + std::string(mode == Mode::Create ? "create" : "open") + " HDF5 file '" + path +
+                        "'");
 }
 
 H5File::~H5File() {

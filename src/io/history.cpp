@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/io/output_files.hpp"
 
@@ -30,15 +31,15 @@ HistoryFile::HistoryFile(const std::string& path, const core::Comm& comm, long l
     {
       std::ofstream tmp(temporary_name(path), std::ios::trunc);
       tmp << kept;
-      if (!tmp) throw std::runtime_error("cannot write history file '" + temporary_name(path) + "'");
+      if (!tmp) throw core::IOError("cannot write history file '" + temporary_name(path) + "'");
     }
     if (std::rename(temporary_name(path).c_str(), path.c_str()) != 0)
-      throw std::runtime_error("cannot replace history file '" + path + "'");
+      throw core::IOError("cannot replace history file '" + path + "'");
     out_.open(path, std::ios::app);
   } else {
     out_.open(path, std::ios::trunc);
   }
-  if (!out_) throw std::runtime_error("cannot open history file '" + path + "'");
+  if (!out_) throw core::IOError("cannot open history file '" + path + "'");
 }
 
 void HistoryFile::record(long long step, double time, double dt, const std::vector<Diagnostic>& diagnostics) {

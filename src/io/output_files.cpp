@@ -6,6 +6,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 
 namespace mote::io {
@@ -24,7 +25,7 @@ void create_directory(const std::string& dir, const core::Comm& comm) {
     }
   }
   ok = comm.broadcast(ok);
-  if (!ok) throw std::runtime_error("cannot create output directory '" + dir + "'" + (why.empty() ? "" : ": " + why));
+  if (!ok) throw core::IOError("cannot create output directory '" + dir + "'" + (why.empty() ? "" : ": " + why));
 }
 
 std::string temporary_name(const std::string& final_path) { return final_path + ".tmp"; }
@@ -34,7 +35,7 @@ void commit_file(const std::string& final_path, const core::Comm& comm) {
   int ok = 1;
   if (comm.is_root()) ok = std::rename(temporary_name(final_path).c_str(), final_path.c_str()) == 0 ? 1 : 0;
   ok = comm.broadcast(ok);
-  if (!ok) throw std::runtime_error("cannot rename '" + temporary_name(final_path) + "' to '" + final_path + "'");
+  if (!ok) throw core::IOError("cannot rename '" + temporary_name(final_path) + "' to '" + final_path + "'");
 }
 
 std::string numbered_path(const std::string& dir, const std::string& stem, long long index, const std::string& ext) {

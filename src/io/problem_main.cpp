@@ -1,10 +1,14 @@
 // The main() of every problem executable (see include/mote/io/problem_main.hpp).
 #include "mote/io/problem_main.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <vector>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/runtime.hpp"
 #include "mote/io/output_files.hpp"
@@ -18,18 +22,22 @@ struct CommandLine {
   std::optional<std::string> deck_path;
   std::vector<std::string> overrides;
   std::optional<std::string> restart;
-  bool help = false, reference = false, check_only = false;
+  bool check_only = false;
 };
+
+/// True for an argument that reads as a deck key ("grid.nx") rather than a deck file.
+bool looks_like_key(const std::string& arg) {
+  static const std::regex key(R"([A-Za-z_][A-Za-z0-9_]*\.[A-Za-z_][A-Za-z0-9_]*)");
+  std::error_code ec;
+  return std::regex_match(arg, key) && !std::filesystem::exists(arg, ec) &&
+         std::filesystem::path(arg).extension() != ".toml";
+}
 
 CommandLine parse_command_line(int argc, char** argv) {
   CommandLine cl;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") {
-      cl.help = true;
-    } else if (arg == "--deck-reference") {
-      cl.reference = true;
-    } else if (arg == "--check") {
+    if (arg == "--check") {
       cl.check_only = true;
     } else if (arg == "--restart") {
       if (i + 1 >= argc) throw core::DeckError("--restart needs a checkpoint file or 'latest'");
@@ -40,6 +48,8 @@ CommandLine parse_command_line(int argc, char** argv) {
       throw core::DeckError("unknown option '" + arg + "' (see --help)");
     } else if (arg.find('=') != std::string::npos) {
       cl.overrides.push_back(arg);
+    } else if (looks_like_key(arg)) {
+      throw core::DeckError("'" + arg + "' is not a file; an override needs a value: " + arg + "=VALUE");
     } else if (!cl.deck_path) {
       cl.deck_path = arg;
     } else {
@@ -54,13 +64,46 @@ std::string usage(const ProblemDefinition& p) {
          " [deck.toml] [table.key=value ...] [--restart FILE|latest] [--check]\n"
          "       " +
          p.name +
-         " --help | --deck-reference\n\n"
+         " --help | --version | --deck-reference\n\n"
          "  --restart FILE    continue from a checkpoint; without a deck, the deck stored in it is used\n"
          "  --restart latest  continue from the newest checkpoint in output.dir\n"
-         "  --check           validate the deck, print it resolved, and exit\n"
-         "exit codes: 0 finished (or stopped at run.max_steps), 1 error, 2 invalid input,\n"
-         "            3 non-finite value, 4 interrupted by SIGINT/SIGTERM (checkpoint written)\n\n"
+         "  --check           validate the deck (every rule the run applies), print it resolved, and exit\n"
+         "  --version         print the version of mote and exit\n"
+         "  --kokkos-help     Kokkos's own options\n"
+         "exit codes: 0 finished (or stopped at run.max_steps), 1 internal error, 2 invalid input,\n"
+         "            3 non-finite value or time-step below run.dt_min, 4 interrupted by SIGINT/SIGTERM\n"
+         "            (checkpoint written), 5 file I/O error (docs/quickstart.md)\n\n"
          "deck keys:\n";
+}
+
+/// Answers --help, --version and --deck-reference, which need no parallel runtime:
+/// before Kokkos starts, so that its banner does not bury mote's help.
+std::optional<int> answer_information_request(int argc, char** argv, const ProblemDefinition& problem,
+                                              const core::DeckSchema& schema) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") {
+      std::cout << usage(problem) << schema.help_text() << std::flush;
+      return core::kExitFinished;
+    }
+    if (arg == "--version") {
+      std::cout << "mote " << MOTE_VERSION_STRING << " (" << problem.name << ")" << std::endl;
+      return core::kExitFinished;
+    }
+    if (arg == "--deck-reference") {
+      std::cout << "## Problem `" << problem.name << "`\n\n"
+                << problem.summary << "\n\n"
+                << schema.markdown() << std::endl;
+      return core::kExitFinished;
+    }
+  }
+  return std::nullopt;
+}
+
+/// Prints `error` (on the root rank) and returns its exit code.
+int report(const std::exception& error, const core::Comm& comm) {
+  if (comm.is_root()) std::cerr << "error: " << error.what() << std::endl;
+  return core::exit_code_of(error);
 }
 
 /// The deck stored in a checkpoint, for restarts without a deck argument.
@@ -71,26 +114,34 @@ std::string deck_from_checkpoint(const std::string& path, const core::Comm& comm
 
 }  // namespace
 
+core::DeckRule requires_choice(const std::string& problem, const std::string& dotted, const std::string& value) {
+  const std::string table = dotted.substr(0, dotted.find('.'));
+  return [=](const core::Deck& d, core::DeckCheck& check) {
+    if (d.has_table(table) && d.string(dotted) != value) check.fail(dotted, problem + " needs \"" + value + "\"");
+  };
+}
+
+core::DeckRule requires_table(const std::string& problem, const std::string& table) {
+  return [=](const core::Deck& d, core::DeckCheck& check) {
+    if (!d.has_table(table)) check.fail_missing_table(table, problem + " needs it");
+  };
+}
+
 int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
-  core::Runtime runtime(argc, argv);
-  const core::Comm& comm = runtime.comm();
   core::DeckSchema schema;
   RunSettings::declare(schema);
   problem.declare(schema);
+  if (const auto answered = answer_information_request(argc, argv, problem, schema)) return *answered;
+  const bool kokkos_help = std::find(argv + 1, argv + argc, std::string("--kokkos-help")) != argv + argc;
+  core::Runtime runtime(argc, argv);  // prints Kokkos's help for --kokkos-help
+  if (kokkos_help) return core::kExitFinished;
+  const core::Comm& comm = runtime.comm();
 
   CommandLine cl;
   std::optional<core::Deck> deck;
   std::optional<std::string> restart;
   try {
     cl = parse_command_line(argc, argv);
-    if (cl.help) {
-      logging::info(usage(problem), schema.help_text());
-      return kExitFinished;
-    }
-    if (cl.reference) {
-      logging::info("## Problem `", problem.name, "`\n\n", problem.summary, "\n\n", schema.markdown());
-      return kExitFinished;
-    }
     if (cl.deck_path) {
       deck = core::Deck::load(*cl.deck_path, schema, cl.overrides);
     } else if (cl.restart && *cl.restart != "latest") {
@@ -113,31 +164,29 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
       }
     }
   } catch (const core::DeckError& e) {
-    if (comm.is_root()) std::cerr << "error: " << e.what() << std::endl;
-    return kExitBadInput;
+    return report(e, comm);
   }
 
   logging::info("mote ", MOTE_VERSION_STRING, " : problem ", problem.name, " : ", runtime.describe());
   logging::info(deck->to_toml());
-  if (cl.check_only) return kExitFinished;
+  if (cl.check_only) return core::kExitFinished;
 
   try {
     const RunSettings settings = RunSettings::from_deck(*deck);
     const units::UnitSystem units = units::unit_system_by_name(settings.units);
     core::Timers timers;
     std::unique_ptr<Simulation> sim;
-    try {
+    {
       core::ScopedTimer timer(timers, "setup");
       sim = problem.create(ProblemContext{*deck, comm, units, timers, restart.has_value()});
-    } catch (const core::DeckError& e) {
-      if (comm.is_root()) std::cerr << "error: " << e.what() << std::endl;
-      return kExitBadInput;
     }
     RunLoop loop(settings, problem.name, *deck, units, comm, timers);
     return loop.run(*sim, restart);
+  } catch (const core::InputError& e) {
+    return report(e, comm);
   } catch (const std::exception& e) {
     logging::error(e.what());
-    return kExitError;
+    return core::exit_code_of(e);
   }
 }
 

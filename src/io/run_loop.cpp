@@ -43,6 +43,10 @@ class SignalGuard {
   }, old_term_{};
 };
 
+/// run.dt_min = 0 stands for this fraction of run.t_end: a run that needs more
+/// than 1e12 steps will not finish, and dt that small is usually a collapsed state.
+constexpr double kDefaultDtMinFraction = 1e-12;
+
 double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 }  // namespace
@@ -50,11 +54,20 @@ double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clo
 void RunSettings::declare(core::DeckSchema& schema) {
   schema.table("run", "Time loop: end time, step limit, checks and progress output.");
   schema.real("run.t_end").unit("code time").min(0.0).doc("End time of the run.");
+  schema.real("run.dt_min")
+      .default_value(0.0)
+      .unit("code time")
+      .min(0.0)
+      .doc(
+          "Smallest allowed solver time-step; a smaller one stops the run (exit 3) naming the limiting constraint. "
+          "0 = 1e-12 run.t_end.");
   schema.integer("run.max_steps")
+      .int64()
       .default_value(0LL)
       .min(0)
       .doc("Stop (with a checkpoint) after this many steps in total; 0 = no limit.");
   schema.integer("run.nan_check_every")
+      .int64()
       .default_value(1LL)
       .min(1)
       .doc("Steps between checks of the evolved fields for NaN/Inf.");
@@ -80,6 +93,7 @@ void RunSettings::declare(core::DeckSchema& schema) {
       .min(0.0)
       .doc("Time between snapshots; 0 = initial and final only.");
   schema.integer("output.checkpoint_every")
+      .int64()
       .default_value(0LL)
       .min(0)
       .doc("Steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM.");
@@ -89,15 +103,17 @@ void RunSettings::declare(core::DeckSchema& schema) {
       .min(0.0)
       .doc("Wall-clock seconds between checkpoints; 0 = off.");
   schema.integer("output.checkpoints_kept")
+      .int64()
       .default_value(2LL)
       .min(1)
       .doc("Number of most recent checkpoints kept on disk.");
-  schema.integer("output.history_every").default_value(1LL).min(1).doc("Steps between rows of history.txt.");
+  schema.integer("output.history_every").int64().default_value(1LL).min(1).doc("Steps between rows of history.txt.");
 }
 
 RunSettings RunSettings::from_deck(const core::Deck& deck) {
   RunSettings s;
   s.t_end = deck.real("run.t_end");
+  s.dt_min = deck.real("run.dt_min") > 0.0 ? deck.real("run.dt_min") : kDefaultDtMinFraction * s.t_end;
   s.max_steps = deck.integer("run.max_steps");
   s.nan_check_every = deck.integer("run.nan_check_every");
   s.progress_interval = deck.real("run.progress_interval");
@@ -154,7 +170,7 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
     if (comm_.is_root()) {
       std::ofstream out(temporary_name(xmf), std::ios::trunc);
       out << xdmf;
-      if (!out) throw std::runtime_error("cannot write '" + temporary_name(xmf) + "'");
+      if (!out) throw core::IOError("cannot write '" + temporary_name(xmf) + "'");
     }
     commit_file(xmf, comm_);
   }
@@ -189,10 +205,21 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
 }
 
 void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
+  try {
+    restore_checkpoint(sim, s, path);
+  } catch (const core::InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw core::InputError("cannot restart from checkpoint '" + path + "': " + e.what());
+  }
+  logging::info("restarted from ", path, " at step ", s.step, ", t = ", logging::format("%.10g", s.time));
+}
+
+void RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::string& path) {
   H5File file(path, H5File::Mode::Read, comm_);
   if (file.read_attribute_string("/", "problem") != problem_)
-    throw std::runtime_error("checkpoint '" + path + "' belongs to problem '" +
-                             file.read_attribute_string("/", "problem") + "', not '" + problem_ + "'");
+    throw core::InputError("checkpoint '" + path + "' belongs to problem '" +
+                           file.read_attribute_string("/", "problem") + "', not '" + problem_ + "'");
   s.time = file.read_attribute_real("/", "time");
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
@@ -200,7 +227,6 @@ void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);
-  logging::info("restarted from ", path, " at step ", s.step, ", t = ", logging::format("%.10g", s.time));
 }
 
 bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
@@ -210,6 +236,16 @@ bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
                    logging::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
                    " holds the last good state.");
   return comm_.max(bad ? 1 : 0) != 0;
+}
+
+bool RunLoop::time_step_usable(const Simulation& sim, const State& s, double dt) const {
+  const bool usable = dt > 0.0 && dt >= settings_.dt_min && std::isfinite(dt);
+  if (!usable) {
+    const std::string limit = sim.dt_limit().empty() ? "" : ", limited by the " + sim.dt_limit() + ",";
+    logging::error(logging::format("time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time), limit,
+                   logging::format(" is below run.dt_min = %g; stopping", settings_.dt_min));
+  }
+  return usable;
 }
 
 void RunLoop::progress(const State& s, double wall, long long steps_done) const {
@@ -230,7 +266,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
                       restart ? s.step : -1);
   const long long start_step = s.step;
   if (!restart) {
-    if (report_non_finite(sim, s)) return kExitNonFinite;
+    if (report_non_finite(sim, s)) return core::kExitNonFinite;
     history.record(s.step, s.time, 0.0, sim.diagnostics());
     write_snapshot(sim, s);
     s.next_output = 1;
@@ -243,17 +279,14 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
       logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
                     "; writing a checkpoint and stopping");
       write_checkpoint(sim, s);
-      return kExitInterrupted;
+      return core::kExitInterrupted;
     }
     double dt;
     {
       core::ScopedTimer timer(timers_, "dt");
       dt = sim.max_dt();
     }
-    if (!(dt > 0.0) || !std::isfinite(dt)) {
-      logging::error(logging::format("invalid time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time));
-      return kExitNonFinite;
-    }
+    if (!time_step_usable(sim, s, dt)) return core::kExitNonFinite;
     const double t_next = next_snapshot_time(s);
     double new_time = s.time + dt;
     if (new_time >= t_next) {  // land exactly on the next output time
@@ -273,7 +306,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
         (settings_.checkpoint_every > 0 && s.step % settings_.checkpoint_every == 0) ||
         (settings_.checkpoint_wall > 0 && comm_.max(wall_now() - last_checkpoint) >= settings_.checkpoint_wall);
     const bool check_due = s.step % settings_.nan_check_every == 0;
-    if ((check_due || at_snapshot || checkpoint_due) && report_non_finite(sim, s)) return kExitNonFinite;
+    if ((check_due || at_snapshot || checkpoint_due) && report_non_finite(sim, s)) return core::kExitNonFinite;
     if (s.step % settings_.history_every == 0) history.record(s.step, s.time, s.dt, sim.diagnostics());
     if (at_snapshot) {
       write_snapshot(sim, s);
@@ -290,7 +323,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
     }
   }
   const bool finished = s.time >= t_end;
-  if (report_non_finite(sim, s)) return kExitNonFinite;
+  if (report_non_finite(sim, s)) return core::kExitNonFinite;
   if (!snapshot_current) write_snapshot(sim, s);
   write_checkpoint(sim, s);
   progress(s, wall_now() - wall_start, s.step - start_step);
@@ -300,7 +333,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
                                 (s.step - start_step) / std::max(wall, 1e-30)));
   if (finished) sim.finish(s.time);
   logging::info("timers:\n", timers_.summary(wall));
-  return finished ? kExitFinished : kExitStepLimit;
+  return finished ? core::kExitFinished : core::kExitStepLimit;
 }
 
 }  // namespace mote::io

@@ -36,6 +36,50 @@ std::vector<double> block_edges(double lo, double split, double hi, int n, int n
   return inner;
 }
 
+namespace {
+
+/// An explicit edge list `key` must hold `n_key` + 1 strictly increasing values.
+void check_edge_list(const core::Deck& d, core::DeckCheck& check, const std::string& key, const std::string& n_key) {
+  const auto& e = d.real_array(key);
+  const long long n = d.integer(n_key);
+  if (static_cast<long long>(e.size()) != n + 1)
+    check.fail(key, logging::cat("expected ", n + 1, " edges (", check.quote(n_key), " + 1), got ", e.size()));
+  for (size_t k = 1; k < e.size(); ++k)
+    if (!(e[k] > e[k - 1])) return check.fail(key, "edges must increase strictly");
+}
+
+void check_radial_edges(const core::Deck& d, core::DeckCheck& check) {
+  if (d.string("grid.r_spacing") == "edges")
+    check_edge_list(d, check, "grid.r_edges", "grid.nr");
+  else if (!(d.real("grid.R_out") > d.real("grid.R_in")))
+    check.fail("grid.R_out", "must exceed " + check.quote("grid.R_in"));
+}
+
+void check_theta_edges(const core::Deck& d, core::DeckCheck& check) {
+  const std::string& ts = d.string("grid.theta_spacing");
+  if (ts == "edges") {
+    check_edge_list(d, check, "grid.theta_edges", "grid.ntheta");
+    const auto& e = d.real_array("grid.theta_edges");
+    if (!e.empty() && (e.front() <= -1.5 || e.back() >= 1.5))
+      check.fail("grid.theta_edges", "edges must lie within (-1.5, 1.5) rad");
+    return;
+  }
+  const double t0 = d.real("grid.theta_min"), t1 = d.real("grid.theta_max");
+  if (!(t1 > t0)) check.fail("grid.theta_max", "must exceed " + check.quote("grid.theta_min"));
+  if (t0 <= -1.5) check.fail("grid.theta_min", "must exceed -1.5 rad");
+  if (t1 >= 1.5) check.fail("grid.theta_max", "must be below 1.5 rad");
+  if (ts != "blocks") return;
+  const double split = d.real("grid.theta_split");
+  if (!(split > t0 && split < t1))
+    check.fail("grid.theta_split", "theta_spacing = \"blocks\" needs it between " + check.quote("grid.theta_min") +
+                                       " and " + check.quote("grid.theta_max"));
+  const long long inner = d.integer("grid.theta_block_cells");
+  if (inner < 1 || inner >= d.integer("grid.ntheta"))
+    check.fail("grid.theta_block_cells", "theta_spacing = \"blocks\" needs 1 <= it < " + check.quote("grid.ntheta"));
+}
+
+}  // namespace
+
 void GridSpec::declare(core::DeckSchema& s) {
   s.table("grid", "The (R, theta) disc grid (RBO24 sec. 2).");
   s.integer("grid.nr").min(1).doc("Active cells in R (over all MPI ranks).");
@@ -78,6 +122,8 @@ void GridSpec::declare(core::DeckSchema& s) {
       .default_value(std::string("cylindrical"))
       .one_of({"cylindrical", "planar"})
       .doc("Cell volumes and areas: axisymmetric (eq. 1-3) or planar 2D (tests).");
+  s.rule(check_radial_edges);
+  s.rule(check_theta_edges);
 }
 
 GridSpec GridSpec::from_deck(const core::Deck& d) {
@@ -90,34 +136,18 @@ GridSpec GridSpec::from_deck(const core::Deck& d) {
   if (rs == "edges") {
     g.r_edges = d.real_array("grid.r_edges");
   } else {
-    if (!(R_out > R_in)) throw core::DeckError("grid.R_out must exceed grid.R_in");
     g.r_edges = rs == "log" ? log_edges(R_in, R_out, g.nr) : linear_edges(R_in, R_out, g.nr);
   }
   const double t0 = d.real("grid.theta_min"), t1 = d.real("grid.theta_max");
   const std::string& ts = d.string("grid.theta_spacing");
-  if (ts != "edges" && !(t1 > t0)) throw core::DeckError("grid.theta_max must exceed grid.theta_min");
   if (ts == "linear") g.theta_edges = linear_edges(t0, t1, g.ntheta);
   if (ts == "power") g.theta_edges = power_edges(t0, t1, g.ntheta, d.real("grid.theta_power"));
   if (ts == "blocks") {
     const double split = d.real("grid.theta_split");
     const int inner = static_cast<int>(d.integer("grid.theta_block_cells"));
-    if (!(split > t0 && split < t1) || inner < 1 || inner >= g.ntheta)
-      throw core::DeckError(
-          "theta_spacing = \"blocks\" needs theta_min < grid.theta_split < theta_max and 1 <= grid.theta_block_cells < "
-          "ntheta");
     g.theta_edges = block_edges(t0, split, t1, g.ntheta, inner);
   }
   if (ts == "edges") g.theta_edges = d.real_array("grid.theta_edges");
-  auto check_edges = [](const std::vector<double>& e, int n, const char* key) {
-    if (static_cast<int>(e.size()) != n + 1)
-      throw core::DeckError(logging::cat(key, ": expected ", n + 1, " edges, got ", e.size()));
-    for (size_t k = 1; k < e.size(); ++k)
-      if (!(e[k] > e[k - 1])) throw core::DeckError(logging::cat(key, ": edges must increase strictly"));
-  };
-  check_edges(g.r_edges, g.nr, "grid.r_edges");
-  check_edges(g.theta_edges, g.ntheta, "grid.theta_edges");
-  if (g.theta_edges.front() <= -1.5 || g.theta_edges.back() >= 1.5)
-    throw core::DeckError("grid theta edges must lie within (-1.5, 1.5) rad");
   g.geometry = d.string("grid.geometry") == "planar" ? Geometry::Planar : Geometry::Cylindrical;
   return g;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mote/core/deck.hpp"
+#include "mote/core/log.hpp"
 #include "mote/sph/lattice.hpp"
 
 namespace mote::sph {
@@ -34,17 +35,20 @@ DustProblem tube(SphConfig cfg, const DustSettings& dust, Real lo, Real hi) {
 
 }  // namespace
 
-DustSettings dust_settings_for(const core::Deck& d, const std::string& problem, DragLaw drag, bool uniform_eps) {
-  if (!d.has_table("dust")) throw core::DeckError(problem + ": the deck needs the table [dust]");
-  const DustSettings ds = DustSettings::from_deck(d);
-  if (ds.drag != drag) {
-    const char* want = drag == DragLaw::ConstantK ? "constant_K" : drag == DragLaw::Epstein ? "epstein" : "constant_ts";
-    throw core::DeckError(problem + ": dust.drag must be \"" + want + "\" (the reference solution assumes it)");
-  }
-  const Real e = total_eps(ds);
-  if (uniform_eps && !(e > 0.0 && e < 1.0))
-    throw core::DeckError(problem + ": dust.eps must sum to a value in (0, 1), got " + std::to_string(e));
-  return ds;
+void declare_dust_problem(core::DeckSchema& schema, const std::string& problem, DragLaw drag, bool uniform_eps) {
+  DustSettings::declare(schema);
+  const std::string want = drag == DragLaw::ConstantK ? "constant_K"
+                           : drag == DragLaw::Epstein ? "epstein"
+                                                      : "constant_ts";
+  schema.rule([=](const core::Deck& d, core::DeckCheck& check) {
+    if (!d.has_table("dust")) return check.fail_missing_table("dust", problem + " needs it");
+    if (d.string("dust.drag") != want)
+      check.fail("dust.drag", problem + " needs \"" + want + "\" (the reference solution assumes it)");
+    // The sum needs consistent per-species lists (DustSettings' own rule, run before this one).
+    if (!uniform_eps || !check.errors().empty()) return;
+    const Real e = total_eps(DustSettings::from_deck(d));
+    if (!(e > 0.0 && e < 1.0)) check.fail("dust.eps", logging::cat("must sum to a value in (0, 1), got ", e));
+  });
 }
 
 std::unique_ptr<SphSystem> DustProblem::make_system() const {

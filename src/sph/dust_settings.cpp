@@ -7,9 +7,41 @@
 
 #include "mote/core/deck.hpp"
 #include "mote/core/deck_schema.hpp"
+#include "mote/core/log.hpp"
 #include "mote/dust/size_distribution.hpp"
 
 namespace mote::sph {
+
+namespace {
+
+/// Per-species lists hold one value (all species) or dust.species values, as
+/// DustSettings::validate() requires; checked here against the deck, with file and line.
+void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
+  if (!d.has_table("dust")) return;
+  const long long n = d.integer("dust.species");
+  auto check_list = [&](const std::string& key, bool needed) {
+    const size_t size = d.real_array(key).size();
+    if (needed && !(size == 1 || static_cast<long long>(size) == n))
+      check.fail(key, logging::cat("needs 1 or ", n, " entries (", check.quote("dust.species"), "), got ", size));
+  };
+  const std::string& drag = d.string("dust.drag");
+  const bool lists = d.string("dust.sizes_from") == "list";
+  check_list("dust.K", drag == "constant_K");
+  check_list("dust.stopping_time", drag == "constant_ts");
+  check_list("dust.sizes", lists && drag == "epstein");
+  check_list("dust.eps", lists && !d.real_array("dust.eps").empty());
+  if (!lists && !(d.real("dust.s_max") > d.real("dust.s_min")))
+    check.fail("dust.s_max", "must exceed " + check.quote("dust.s_min"));
+}
+
+/// PdV work from div v_g with drag heating needs an energy equation.
+void check_pdv(const core::Deck& d, core::DeckCheck& check) {
+  if (d.has_table("dust") && d.has_table("sph") && d.string("dust.pdv") == "gas" && d.string("sph.eos") != "adiabatic")
+    check.fail("dust.pdv",
+               "\"gas\" needs " + check.quote("sph.eos") + " to be \"adiabatic\" (no PdV work when isothermal)");
+}
+
+}  // namespace
 
 void DustSettings::declare(core::DeckSchema& s) {
   s.table("dust", "One-fluid dust in the terminal-velocity approximation (PL15; N species: MULTIGRAIN, HPL18).",
@@ -92,6 +124,8 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc(
           "Snapshots also hold dust_velocity: v_dj = v_g + Dv_j of every species (HPL18 eq. 24-25), "
           "3N components per particle, v_dj along axis d in column 3 j + d.");
+  s.rule(check_species_lists);
+  s.rule(check_pdv);
 }
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {
@@ -124,7 +158,6 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   s.project_mass = d.boolean("dust.project_mass");
   s.limit_ts = d.boolean("dust.limit_stopping_time");
   s.write_velocities = d.boolean("dust.write_velocities");
-  s.validate();
   return s;
 }
 

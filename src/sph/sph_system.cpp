@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "mote/core/exit_codes.hpp"
+#include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/forces.hpp"
@@ -147,13 +149,13 @@ void SphSystem::update_density() {
     density_passes_ += r.mean_iterations;
     if (r.outside_cover == 0) {
       if (r.not_converged > 0) {
-        throw std::runtime_error("sph: h-rho iteration did not converge for " + std::to_string(r.not_converged) +
-                                 " particles");
+        throw core::NumericalError("sph: h-rho iteration did not converge for " + std::to_string(r.not_converged) +
+                                   " particles");
       }
       return;
     }
   }
-  throw std::runtime_error("sph: smoothing lengths kept outgrowing the neighbour list");
+  throw core::NumericalError("sph: smoothing lengths kept outgrowing the neighbour list");
 }
 
 void SphSystem::compute_accelerations(const RealView2& vel, const RealView1& u) {
@@ -181,9 +183,17 @@ void SphSystem::initialise() {
 
 Real SphSystem::timestep() {
   Real dt = compute_timestep(p_, cfg_);
-  for (const auto& c : dt_hooks_) dt = std::min(dt, c(p_));
-  if (dust_) dt = std::min(dt, dust_->timestep(p_, cfg_));
-  if (!(dt > 0.0) || !std::isfinite(dt)) throw std::runtime_error("sph: invalid time-step");
+  dt_limit_ = "SPH gas Courant/force/damping condition (PL15 eq. 32, 56)";
+  auto take = [&](Real candidate, const char* limit) {
+    if (candidate < dt) {
+      dt = candidate;
+      dt_limit_ = limit;
+    }
+  };
+  for (const auto& c : dt_hooks_) take(c(p_), "time-step constraint of the problem");
+  if (dust_) take(dust_->timestep(p_, cfg_), "one-fluid dust time-step (diffusion/stopping time)");
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw core::NumericalError(logging::cat("sph: invalid time-step ", dt, " from the ", dt_limit_));
   return dt;
 }
 

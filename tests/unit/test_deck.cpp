@@ -1,6 +1,7 @@
 // Deck declaration, parsing and validation (include/mote/core/deck.hpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "mote/core/deck.hpp"
@@ -139,4 +140,97 @@ TEST(DeckSchema, EditDistanceAndHelp) {
   EXPECT_NE(help.find("length (real)  required  [cm]  > 0"), std::string::npos) << help;
   EXPECT_NE(schema.markdown().find("| `nx` | integer | `64` |"), std::string::npos);
   EXPECT_THROW(make_schema().real("grid.nx"), std::logic_error);  // declared twice
+}
+
+// Issue 22: numbers that parse but cannot be run.
+TEST(Deck, NonFiniteRealsAreRejectedUnlessAllowed) {
+  const auto in_file = error_of("[grid]\nlength = inf\n");
+  EXPECT_NE(in_file.find("test.toml:2: key 'grid.length': value inf is not finite"), std::string::npos) << in_file;
+  const auto on_line = error_of("[grid]\nlength = 1.0\n", {"grid.length=nan", "grid.sizes=[1.0, -inf]"});
+  EXPECT_NE(on_line.find("command line 'grid.length=nan': key 'grid.length': value nan is not finite"),
+            std::string::npos)
+      << on_line;
+  EXPECT_NE(on_line.find("key 'grid.sizes': value [1.0, -inf] holds a value that is not finite"), std::string::npos)
+      << on_line;
+  DeckSchema schema;
+  schema.table("run", "run");
+  schema.real("run.limit").default_value(0.0).allow_non_finite();
+  EXPECT_TRUE(std::isinf(Deck::parse("[run]\nlimit = inf\n", "t.toml", schema).real("run.limit")));
+}
+
+TEST(Deck, IntegersMustFitTheirCppType) {
+  const auto msg = error_of("[grid]\nlength = 1.0\n", {"grid.nx=3000000000"});
+  EXPECT_NE(msg.find("command line 'grid.nx=3000000000': key 'grid.nx': value 3000000000 does not fit the key's C++ "
+                     "type int (-2147483648 to 2147483647); expected integer >= 1"),
+            std::string::npos)
+      << msg;
+  DeckSchema schema;
+  schema.table("run", "run");
+  schema.integer("run.steps").int64().default_value(0LL);
+  EXPECT_EQ(Deck::parse("[run]\nsteps = 3000000000\n", "t.toml", schema).integer("run.steps"), 3000000000LL);
+}
+
+TEST(Deck, TypeErrorOnRequiredKeyIsNotAlsoMissing) {
+  const auto msg = error_of("[grid]\nlength = \"long\"\n");
+  EXPECT_NE(msg.find("key 'grid.length': expected real"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("missing required key"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(1 error)"), std::string::npos) << msg;
+}
+
+TEST(Deck, DirectoryIsNotADeck) {
+  const auto schema = make_schema();
+  const std::string dir = ::testing::TempDir();
+  try {
+    Deck::load(dir, schema);
+    ADD_FAILURE() << "a directory was read as a deck";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("'" + dir + "': is a directory"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("missing"), std::string::npos) << e.what();
+  }
+}
+
+// Cross-key rules: every broken rule is reported with the line of its key,
+// together with the keys' own errors; a rule that reads a rejected key is skipped.
+TEST(Deck, CrossKeyRulesReportEveryErrorWithItsLine) {
+  auto schema = make_schema();
+  schema.rule([](const Deck& d, mote::core::DeckCheck& check) {
+    if (d.real_array("grid.sizes").size() != static_cast<size_t>(d.integer("grid.nx")))
+      check.fail("grid.sizes", "needs one value per cell (" + check.quote("grid.nx") + ")");
+  });
+  schema.rule([](const Deck& d, mote::core::DeckCheck& check) {
+    if (d.string("grid.kind") == "log" && !(d.real("grid.length") > 1.0)) check.fail("grid.length", "must exceed 1");
+  });
+  const auto both = [&] {
+    try {
+      Deck::parse("[grid]\nnx = 3\nlength = 0.5\nkind = \"log\"\nsizes = [1.0]\n", "test.toml", schema);
+    } catch (const DeckError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  EXPECT_NE(both.find("(2 errors)"), std::string::npos) << both;
+  EXPECT_NE(both.find("test.toml:5: key 'grid.sizes': needs one value per cell (grid.nx = 3 (test.toml:2))"),
+            std::string::npos)
+      << both;
+  EXPECT_NE(both.find("test.toml:3: key 'grid.length': must exceed 1"), std::string::npos) << both;
+  const auto with_bad_key = [&] {
+    try {
+      Deck::parse("[grid]\nnx = \"three\"\nlength = 0.5\nkind = \"log\"\n", "test.toml", schema);
+    } catch (const DeckError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  EXPECT_NE(with_bad_key.find("(2 errors)"), std::string::npos) << with_bad_key;  // nx's own, and the length rule
+  EXPECT_NE(with_bad_key.find("test.toml:3: key 'grid.length': must exceed 1"), std::string::npos) << with_bad_key;
+  EXPECT_EQ(with_bad_key.find("grid.sizes"), std::string::npos) << with_bad_key;
+}
+
+TEST(ExitCodes, FollowTheKindOfFailure) {
+  using namespace mote::core;
+  EXPECT_EQ(exit_code_of(DeckError("x")), 2);
+  EXPECT_EQ(exit_code_of(InputError("x")), 2);
+  EXPECT_EQ(exit_code_of(NumericalError("x")), 3);
+  EXPECT_EQ(exit_code_of(IOError("x")), 5);
+  EXPECT_EQ(exit_code_of(std::runtime_error("x")), 1);
 }

@@ -22,8 +22,10 @@ class Decay final : public io::Simulation {
   long long signal_step = -1;  // this step raises SIGTERM
   double y = 1.0;
   long long steps = 0;
+  double dt = 0.03;  // the stable time-step this simulation reports
 
-  double max_dt() override { return 0.03; }
+  double max_dt() override { return dt; }
+  std::string dt_limit() const override { return "decay condition"; }
   void advance(double t, double dt) override {
     y += dt * (-y + std::sin(t));
     steps += 1;
@@ -85,7 +87,7 @@ class RunLoopTest : public ::testing::Test {
 
 TEST_F(RunLoopTest, SnapshotsLandExactlyOnOutputTimes) {
   Decay sim;
-  EXPECT_EQ(run(sim, {}), io::kExitFinished);
+  EXPECT_EQ(run(sim, {}), core::kExitFinished);
   for (int i = 0; i <= 4; ++i) EXPECT_EQ(snapshot_time(i), 0.25 * i);
   EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 5, "h5")));
   EXPECT_TRUE(fs::exists(io::numbered_path(dir_, "snapshot", 4, "xmf")));
@@ -95,20 +97,20 @@ TEST_F(RunLoopTest, SnapshotsLandExactlyOnOutputTimes) {
 
 TEST_F(RunLoopTest, RestartIsBitIdentical) {
   Decay full;
-  ASSERT_EQ(run(full, {}), io::kExitFinished);
+  ASSERT_EQ(run(full, {}), core::kExitFinished);
   const double y_full = full.y;
   const long long steps_full = full.steps;
 
   fs::remove_all(dir_);
   fs::create_directories(dir_);
   Decay first;
-  ASSERT_EQ(run(first, {"run.max_steps=13"}), io::kExitStepLimit);
+  ASSERT_EQ(run(first, {"run.max_steps=13"}), core::kExitStepLimit);
   EXPECT_EQ(first.steps, 13);
   Decay resumed;
   resumed.y = -123.0;  // overwritten by the checkpoint
   const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
   ASSERT_TRUE(checkpoint);
-  ASSERT_EQ(run(resumed, {}, *checkpoint), io::kExitFinished);
+  ASSERT_EQ(run(resumed, {}, *checkpoint), core::kExitFinished);
   EXPECT_EQ(resumed.steps, steps_full);
   EXPECT_EQ(resumed.y, y_full);  // bit-identical
 }
@@ -117,7 +119,7 @@ TEST_F(RunLoopTest, NonFiniteStopsAndKeepsLastGoodCheckpoint) {
   Decay sim;
   sim.poison_step = 12;
   testing::internal::CaptureStderr();
-  EXPECT_EQ(run(sim, {"output.checkpoint_every=5", "output.checkpoints_kept=5"}), io::kExitNonFinite);
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=5", "output.checkpoints_kept=5"}), core::kExitNonFinite);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("non-finite value in field 'y' at the only cell after step 12"), std::string::npos) << err;
   const auto latest = io::latest_numbered(dir_, "checkpoint", "h5");
@@ -133,24 +135,56 @@ TEST_F(RunLoopTest, NonFiniteStopsAndKeepsLastGoodCheckpoint) {
 TEST_F(RunLoopTest, SigtermWritesCheckpointAndResumes) {
   Decay sim;
   sim.signal_step = 7;
-  EXPECT_EQ(run(sim, {}), io::kExitInterrupted);
+  EXPECT_EQ(run(sim, {}), core::kExitInterrupted);
   const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
   ASSERT_TRUE(checkpoint);
   io::H5File f(*checkpoint, io::H5File::Mode::Read, core::Comm::world());
   EXPECT_EQ(f.read_attribute_int("/", "step"), 7);
   Decay resumed;
-  EXPECT_EQ(run(resumed, {}, *checkpoint), io::kExitFinished);
+  EXPECT_EQ(run(resumed, {}, *checkpoint), core::kExitFinished);
   Decay reference;
-  EXPECT_EQ(run(reference, {"output.dir=" + dir_ + "_ref"}), io::kExitFinished);
+  EXPECT_EQ(run(reference, {"output.dir=" + dir_ + "_ref"}), core::kExitFinished);
   EXPECT_EQ(resumed.y, reference.y);
   fs::remove_all(dir_ + "_ref");
 }
 
 TEST_F(RunLoopTest, OldCheckpointsArePruned) {
   Decay sim;
-  EXPECT_EQ(run(sim, {"output.checkpoint_every=3", "output.checkpoints_kept=2"}), io::kExitFinished);
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=3", "output.checkpoints_kept=2"}), core::kExitFinished);
   int count = 0;
   for (const auto& e : fs::directory_iterator(dir_))
     if (e.path().filename().string().rfind("checkpoint_", 0) == 0) ++count;
   EXPECT_EQ(count, 2);
+}
+
+// Issue 22: a collapsing time-step stops the run (exit 3) instead of stalling.
+TEST_F(RunLoopTest, TimeStepBelowMinimumStops) {
+  Decay sim;
+  sim.dt = 1e-13;  // below the default run.dt_min = 1e-12 run.t_end
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(sim, {}), core::kExitNonFinite);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("time-step dt = 1e-13 at step 0 (t = 0), limited by the decay condition, is below run.dt_min = "
+                     "1e-12; stopping"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(sim.steps, 0);
+  Decay explicit_limit;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(explicit_limit, {"run.dt_min=0.05"}), core::kExitNonFinite);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("is below run.dt_min = 0.05"), std::string::npos);
+  Decay allowed;
+  EXPECT_EQ(run(allowed, {"run.dt_min=0.01"}), core::kExitFinished);
+}
+
+TEST_F(RunLoopTest, UnreadableCheckpointIsBadInput) {
+  Decay sim;
+  const std::string missing = dir_ + "/checkpoint_00042.h5";
+  try {
+    run(sim, {}, missing);
+    ADD_FAILURE() << "restart from a missing checkpoint ran";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot restart from checkpoint '" + missing + "'"), std::string::npos)
+        << e.what();
+  }
 }

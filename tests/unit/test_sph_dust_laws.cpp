@@ -181,8 +181,15 @@ TEST(SphDustLaws, DeckTable) {
   ASSERT_EQ(s.sizes.size(), 10u);
   EXPECT_NEAR(s.sizes[0] / 1e-5, 1.0, 5e-3);
   EXPECT_NEAR(s.eps[9] / 3.99e-3, 1.0, 5e-3);
-  const auto bad = mote::core::Deck::parse("[dust]\nspecies = 3\nK = [1.0, 2.0]\n", "t.toml", schema);
-  EXPECT_THROW(DustSettings::from_deck(bad), std::invalid_argument);
+  // A per-species list of the wrong length is a deck error, with file and line, found by validation itself.
+  try {
+    mote::core::Deck::parse("[dust]\nspecies = 3\nK = [1.0, 2.0]\n", "t.toml", schema);
+    ADD_FAILURE() << "dust.K with 2 entries for 3 species accepted";
+  } catch (const mote::core::DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.toml:3: key 'dust.K': needs 1 or 3 entries (dust.species = 3 (t.toml:2))"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_ANY_THROW(mote::core::Deck::parse("[dust]\npdv = \"total\"\n", "t.toml", schema));
 }
 

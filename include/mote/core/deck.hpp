@@ -1,7 +1,9 @@
 // The input deck: a TOML file plus command-line overrides (table.key=value),
 // validated completely against a DeckSchema before anything is allocated or
-// written. Every error names the file (or the override), the line, the key and
-// what was expected; all errors are reported together in one DeckError.
+// written: every key on its own (type, range, finiteness), then the schema's
+// cross-key rules (DeckSchema::rule) on the resolved values. Every error names
+// the file (or the override), the line, the key and what was expected; all
+// errors are reported together in one DeckError.
 #pragma once
 
 #include <map>
@@ -10,12 +12,13 @@
 #include <vector>
 
 #include "mote/core/deck_schema.hpp"
+#include "mote/core/exit_codes.hpp"
 
 namespace mote::core {
 
-class DeckError : public std::runtime_error {
+class DeckError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 class Deck {
@@ -33,17 +36,48 @@ class Deck {
   const std::string& string(const std::string& dotted) const;
   const std::vector<double>& real_array(const std::string& dotted) const;
 
+  /// Where `dotted` got its value: "deck.toml:12", "command line 'a.b=1'" or "deck.toml (default)".
+  const std::string& where(const std::string& dotted) const;
+
   /// The resolved deck (every active key, defaults filled in) as TOML text.
   std::string to_toml() const;
   const std::string& source() const { return source_; }
 
  private:
+  /// Thrown when a rule reads a key whose value was rejected: that rule is skipped,
+  /// the key's own error is already reported.
+  struct RejectedKey : std::logic_error {
+    using std::logic_error::logic_error;
+  };
+  friend class DeckCheck;
   const Value& value(const std::string& dotted, ValueType type) const;
+  std::vector<std::string> check_rules() const;
   std::string source_;
   std::vector<std::string> active_tables_;
   std::map<std::string, Value> values_;
+  std::map<std::string, std::string> where_;
+  std::vector<std::string> rejected_;
   std::map<std::string, std::string> units_;
   const DeckSchema* schema_ = nullptr;
+};
+
+/// What a cross-key rule (DeckSchema::rule) reports into: one error per broken
+/// rule, naming the key, where it was set and what was expected.
+class DeckCheck {
+ public:
+  explicit DeckCheck(const Deck& deck) : deck_(deck) {}
+  /// Records that `dotted` breaks a rule; `expected` says what would be allowed
+  /// ("must exceed grid.R_in = 2 (deck.toml:5)").
+  void fail(const std::string& dotted, const std::string& expected);
+  /// Records that the deck lacks the optional `table` that a problem needs.
+  void fail_missing_table(const std::string& table, const std::string& why);
+  /// `other` written as "grid.R_in = 2 (deck.toml:5)", for messages that name a second key.
+  std::string quote(const std::string& other) const;
+  const std::vector<std::string>& errors() const { return errors_; }
+
+ private:
+  const Deck& deck_;
+  std::vector<std::string> errors_;
 };
 
 }  // namespace mote::core

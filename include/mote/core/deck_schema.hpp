@@ -1,10 +1,13 @@
 // Declarations of input-deck keys. Every module declares the keys it owns,
-// with type, default, unit, allowed range and a one-line description; the
+// with type, default, unit, allowed range and a one-line description, and the
+// rules that tie several keys together (R_out > R_in, array lengths); the
 // Deck (deck.hpp) is validated against the union of these declarations before
-// any allocation or output. The same declarations produce --help and the deck
-// reference in docs.
+// any allocation or output. Reals must be finite unless a key allows inf/nan;
+// integers must fit the C++ type they are read into (int unless declared
+// 64-bit). The same declarations produce --help and the deck reference in docs.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
@@ -15,6 +18,11 @@ namespace mote::core {
 enum class ValueType { Boolean, Integer, Real, String, RealArray };
 
 using Value = std::variant<bool, long long, double, std::string, std::vector<double>>;
+
+class Deck;
+class DeckCheck;
+/// A cross-key rule: reads the validated deck and reports each violation into the DeckCheck.
+using DeckRule = std::function<void(const Deck&, DeckCheck&)>;
 
 const char* type_name(ValueType type);
 /// TOML text of a value ("1.5", "true", "\"name\"", "[1.0, 2.0]").
@@ -33,6 +41,10 @@ class KeySpec {
   KeySpec& max(double bound);           // value <= bound
   KeySpec& less_than(double bound);     // value < bound
   KeySpec& one_of(std::vector<std::string> choices);
+  /// Accepts inf and nan (reals are otherwise required to be finite).
+  KeySpec& allow_non_finite();
+  /// The integer is read as a 64-bit long long (otherwise it must fit an int).
+  KeySpec& int64();
 
   const std::string& table() const { return table_; }
   const std::string& key() const { return key_; }
@@ -46,6 +58,8 @@ class KeySpec {
 
   /// Empty if the value is allowed; otherwise what was expected ("> 0", "one of ...").
   std::string range_violation(const Value& value) const;
+  /// Empty if the value fits the key's C++ type; otherwise why not ("not finite", "outside int").
+  std::string type_violation(const Value& value) const;
   /// Human description of the allowed range ("> 0, <= 1"), empty if unrestricted.
   std::string range_text() const;
 
@@ -57,6 +71,8 @@ class KeySpec {
   std::optional<double> lower_, upper_;
   bool lower_strict_ = false, upper_strict_ = false;
   std::vector<std::string> choices_;
+  bool non_finite_allowed_ = false;
+  bool int64_ = false;
 };
 
 struct TableSpec {
@@ -77,11 +93,14 @@ class DeckSchema {
   KeySpec& real(const std::string& dotted);
   KeySpec& string(const std::string& dotted);
   KeySpec& real_array(const std::string& dotted);
+  /// Adds a cross-key rule, run on every deck after its keys passed their own checks.
+  void rule(DeckRule rule);
 
   const TableSpec* find_table(const std::string& name) const;
   const KeySpec* find_key(const std::string& table, const std::string& key) const;
   const std::vector<TableSpec>& tables() const { return tables_; }
   const std::vector<KeySpec>& keys() const { return keys_; }
+  const std::vector<DeckRule>& rules() const { return rules_; }
   /// Declared keys closest to `dotted` by edit distance (for "did you mean").
   std::optional<std::string> closest_key(const std::string& dotted) const;
   std::optional<std::string> closest_table(const std::string& name) const;
@@ -95,6 +114,7 @@ class DeckSchema {
   KeySpec& add(const std::string& dotted, ValueType type);
   std::vector<TableSpec> tables_;
   std::vector<KeySpec> keys_;
+  std::vector<DeckRule> rules_;
 };
 
 /// Levenshtein edit distance.

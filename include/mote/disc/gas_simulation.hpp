@@ -26,6 +26,7 @@ class GasSimulation : public io::Simulation {
   const mesh::Grid& grid() const { return *grid_; }
 
   double max_dt() override;
+  std::string dt_limit() const override { return "viscous gas CFL (gas.cfl)"; }
   void advance(double time, double dt) override;
   void write_snapshot(io::SnapshotWriter& out) const override;
   void save_state(io::H5File& file) const override;

@@ -1,9 +1,11 @@
 // The main() of every problem executable:
 //   <problem> [deck.toml] [table.key=value ...] [--restart FILE|latest] [--check]
-//   <problem> --help | --deck-reference
-// Order of work: parse the command line, declare and validate the whole deck
-// (nothing allocated or written before it is valid), construct the problem,
-// create the output directory, then run the loop.
+//   <problem> --help | --version | --deck-reference | --kokkos-help
+// Order of work: declare the deck (and answer --help, --version and
+// --deck-reference before Kokkos starts), parse the command line, validate the
+// whole deck with its cross-key rules (nothing allocated or written before it
+// is valid), construct the problem, create the output directory, then run the
+// loop. Every failure ends with an exit code of core/exit_codes.hpp.
 #pragma once
 
 #include <functional>
@@ -34,10 +36,17 @@ struct ProblemDefinition {
   std::string summary;
   /// Declares the problem's own deck tables and keys ([run] and [output] are declared for it).
   std::function<void(core::DeckSchema&)> declare;
-  /// Builds the initial state. May throw core::DeckError for inconsistent input
-  /// (reported like any deck error, before output is created).
+  /// Builds the initial state. May throw core::DeckError for input that only the
+  /// set-up can judge (e.g. cells per MPI rank), reported like any deck error
+  /// before output is created; rules on the deck alone go into declare() (DeckSchema::rule)
+  /// so that --check finds them too.
   std::function<std::unique_ptr<Simulation>(const ProblemContext&)> create;
 };
+
+/// Deck rules for a problem's declare(): its set-up or reference solution
+/// assumes the choice `dotted` = `value` (sph.eos = "adiabatic"), or needs the optional `table`.
+core::DeckRule requires_choice(const std::string& problem, const std::string& dotted, const std::string& value);
+core::DeckRule requires_table(const std::string& problem, const std::string& table);
 
 /// Runs a problem executable; returns the process exit code (see ExitCode).
 int run_problem(int argc, char** argv, const ProblemDefinition& problem);

@@ -9,24 +9,16 @@
 
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/timers.hpp"
 #include "mote/core/units.hpp"
 #include "mote/io/simulation.hpp"
 
 namespace mote::io {
 
-/// Process exit codes of a problem executable.
-enum ExitCode : int {
-  kExitFinished = 0,
-  kExitError = 1,
-  kExitBadInput = 2,
-  kExitNonFinite = 3,
-  kExitInterrupted = 4,  // stopped by SIGINT/SIGTERM after writing a checkpoint
-  kExitStepLimit = 0,    // stopped at run.max_steps after writing a checkpoint
-};
-
 struct RunSettings {
   double t_end = 0.0;
+  double dt_min = 0.0;      // smallest allowed solver time-step (resolved: never 0 unless t_end is)
   long long max_steps = 0;  // 0: no limit
   long long nan_check_every = 1;
   double progress_interval = 2.0;  // wall seconds between progress lines
@@ -47,7 +39,7 @@ class RunLoop {
   RunLoop(RunSettings settings, std::string problem, const core::Deck& deck, units::UnitSystem units,
           const core::Comm& comm, core::Timers& timers);
 
-  /// Runs to run.t_end (or max_steps, a signal, a non-finite value); returns an ExitCode.
+  /// Runs to run.t_end (or max_steps, a signal, a non-finite value or dt < run.dt_min); returns a core::ExitCode.
   /// With `restart`, the state and loop counters are first read from that checkpoint.
   int run(Simulation& sim, const std::optional<std::string>& restart);
 
@@ -63,7 +55,11 @@ class RunLoop {
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_checkpoint(Simulation& sim, State& s);
+  /// Restores `path`; any failure is a core::InputError naming the checkpoint (exit 2).
   void read_checkpoint(Simulation& sim, State& s, const std::string& path);
+  void restore_checkpoint(Simulation& sim, State& s, const std::string& path);
+  /// False (after an error message naming the limiting constraint) for dt < run.dt_min or non-finite.
+  bool time_step_usable(const Simulation& sim, const State& s, double dt) const;
   void write_run_attributes(H5File& file, const State& s) const;
   bool report_non_finite(const Simulation& sim, const State& s) const;
   void progress(const State& s, double wall, long long steps_done) const;

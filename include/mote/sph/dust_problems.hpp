@@ -19,15 +19,15 @@
 #include "mote/sph/sph_system.hpp"
 
 namespace mote::core {
-class Deck;
+class DeckSchema;
 }
 
 namespace mote::sph {
 
-/// The [dust] settings of a problem deck: the table must be present, with the
-/// drag law that the problem's reference solution assumes and, for uniform
-/// set-ups, a total eps in (0, 1); throws core::DeckError naming the keys.
-DustSettings dust_settings_for(const core::Deck& deck, const std::string& problem, DragLaw drag, bool uniform_eps);
+/// Declares the [dust] table of a dust problem with the rules its deck must
+/// meet: the table present, with the drag law that the problem's reference
+/// solution assumes and, for uniform set-ups, a total eps in (0, 1).
+void declare_dust_problem(core::DeckSchema& schema, const std::string& problem, DragLaw drag, bool uniform_eps);
 
 struct DustProblem {
   SphConfig cfg;

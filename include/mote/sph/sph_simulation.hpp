@@ -21,6 +21,7 @@ class SphSimulation : public io::Simulation {
   SphSimulation(std::unique_ptr<SphSystem> system, const units::UnitSystem& units);
 
   double max_dt() override;
+  std::string dt_limit() const override { return system_->dt_limit(); }
   void advance(double time, double dt) override;
   void write_snapshot(io::SnapshotWriter& out) const override;
   void save_state(io::H5File& file) const override;

@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mote/core/kokkos_types.hpp"
@@ -113,6 +114,8 @@ class SphSystem {
   const NeighbourList& neighbours() const { return nl_; }
   Real time() const { return time_; }
   Real next_dt() const { return dt_next_; }
+  /// The constraint that set next_dt() (gas Courant/force/damping, dust, or a problem's), empty after a restart.
+  const std::string& dt_limit() const { return dt_limit_; }
   long long steps() const { return steps_; }
   /// Passes over the neighbour lists per particle in the last density solve.
   double density_passes() const { return density_passes_; }
@@ -153,6 +156,7 @@ class SphSystem {
   ParticleReorder reorder_;
   Real time_ = 0.0;
   Real dt_next_ = 0.0;
+  std::string dt_limit_;
   long long steps_ = 0;
   double density_passes_ = 0.0;
 };
