@@ -26,6 +26,9 @@ void SolverSettings::validate() const {
   if (preconditioning.fill_level < -1)
     throw std::invalid_argument("ILU fill level must be >= 0 (or -1 for none), got " +
                                 std::to_string(preconditioning.fill_level));
+  if (!(relative_floor >= 0.0 && relative_floor < 1.0))
+    throw std::invalid_argument("linear solver relative_floor must lie in [0, 1), got " +
+                                std::to_string(relative_floor));
   if (max_fill_level < 0)
     throw std::invalid_argument("max_fill_level must be >= 0, got " + std::to_string(max_fill_level));
 }
@@ -131,13 +134,13 @@ void restart(Work& w) {
 
 /// max_i |r_i| / max(|b_i|, |A_ii x_i|), non-finite rows counted as HUGE_VAL.
 void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x,
-                             const Vector& r, const Scalar& result) {
+                             const Vector& r, Real floor, const Scalar& result) {
   const auto diagonal = pattern.diagonal;
   const auto values = A.values;
   Kokkos::parallel_reduce(
       "linalg::bicgstab_fractional_residual", Kokkos::RangePolicy<ExecSpace>(0, pattern.n_rows),
       KOKKOS_LAMBDA(int i, Real& m) {
-        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)), floor);
         m = math::fmax(m, math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL));
       },
       Kokkos::Max<Real, MemSpace>(result));
@@ -145,8 +148,8 @@ void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, cons
 
 /// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
 /// for the next iteration.
-Measures measure(Work& w, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x) {
-  max_fractional_residual(pattern, A, b, x, w.r, w.res_max);
+Measures measure(Work& w, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, Real floor) {
+  max_fractional_residual(pattern, A, b, x, w.r, floor, w.res_max);
   KokkosBlas::dot(w.rr, w.r, w.r);
   KokkosBlas::dot(w.rho_next, w.r_hat, w.r);
   const View<Real*> packed = w.packed;
@@ -208,7 +211,8 @@ void full_step(Work& w, const Vector& p_hat, const Vector& s_hat, const Vector& 
 }
 
 /// Row of the largest fractional residual of r.
-int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r) {
+int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r,
+              Real floor) {
   using Loc = Kokkos::MaxLoc<Real, int>;
   const auto diagonal = pattern.diagonal;
   const auto values = A.values;
@@ -216,7 +220,7 @@ int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, co
   par_reduce(
       "linalg::bicgstab_worst_row", 0, pattern.n_rows,
       KOKKOS_LAMBDA(int i, Loc::value_type& m) {
-        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)), floor);
         const Real value = math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL);
         if (value > m.val) {
           m.val = value;
@@ -257,6 +261,20 @@ int first_non_finite_row(const CrsPattern& pattern, const CrsMatrix& DA, const V
   return bad;
 }
 
+/// The largest row size max(|b_k|, |A_kk x_k|).
+Real largest_row_size(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x) {
+  const auto diagonal = pattern.diagonal;
+  const auto values = A.values;
+  Real largest = 0.0;
+  par_reduce(
+      "linalg::bicgstab_row_size", 0, pattern.n_rows,
+      KOKKOS_LAMBDA(int i, Real& m) {
+        m = math::fmax(m, math::fmax(math::fabs(b(i)), math::fabs(values(diagonal(i)) * x(i))));
+      },
+      Kokkos::Max<Real>(largest));
+  return largest;
+}
+
 bool accepted(const Measures& m, Real tolerance) { return m.residual <= tolerance; }
 
 }  // namespace
@@ -271,6 +289,13 @@ LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSe
       x_initial_(name + "::x0", pattern_.n_rows),
       work_(std::make_unique<detail::BicgstabWorkspace>(name, pattern_.n_rows)) {
   settings_.validate();
+  // The configured rung's symbolic factorisation belongs to the set-up.
+  if (settings_.preconditioning.is_ilu()) factors_for(settings_.preconditioning.fill_level);
+}
+
+int LinearSolver::factor_nonzeros(int fill_level) const {
+  const auto found = factors_.find(fill_level);
+  return found == factors_.end() ? 0 : found->second->nnz_lower() + found->second->nnz_upper();
 }
 
 LinearSolver::~LinearSolver() = default;
@@ -285,10 +310,11 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   const auto start = std::chrono::steady_clock::now();
   SolveAttempt out;
   out.preconditioning = preconditioning;
+  const Real floor = settings_.relative_floor * largest_row_size(pattern_, scaled_, b_scaled_, x);
   auto finish = [&](const std::string& reason, bool converged) {
     out.stop_reason = reason;
     out.converged = converged;
-    if (!converged) out.worst_row = worst_row(pattern_, scaled_, b_scaled_, x, work_->r);
+    if (!converged) out.worst_row = worst_row(pattern_, scaled_, b_scaled_, x, work_->r, floor);
     Kokkos::fence();
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
@@ -308,7 +334,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
 
   true_residual(scaled_, b_scaled_, x, w.r);
   restart(w);
-  Measures m = measure(w, pattern_, scaled_, b_scaled_, x);
+  Measures m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
   out.history.push_back(m.residual);
   out.residual = m.residual;
   if (accepted(m, tol)) return finish("converged", true);
@@ -322,13 +348,13 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     if (ilu) ilu->apply(w.s, s_hat);
     KokkosSparse::spmv("N", 1.0, scaled_, s_hat, 0.0, w.t);
     full_step(w, p_hat, s_hat, x);
-    m = measure(w, pattern_, scaled_, b_scaled_, x);
+    m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
     if (accepted(m, tol)) {
       true_residual(scaled_, b_scaled_, x, w.r);
-      m = measure(w, pattern_, scaled_, b_scaled_, x);
+      m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
       out.residual = m.residual;
       if (accepted(m, tol)) return finish("converged", true);
       ++out.restarts;  // the recursive residual drifted from b - A x

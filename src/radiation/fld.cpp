@@ -239,14 +239,14 @@ void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_d
         const int cell = map.cell(i, j), row = map.row_E(cell, b);
         const Real vol = V(i, j), k = k_abs(i, j, b);
         add_entry(row_map, entries, values, row, map.row_B(cell), -vol * k * f(i, j, b));
-        add_entry(row_map, entries, values, row, row, vol * (inv_dt + c * k));
+        add_entry(row_map, entries, values, row, row, vol * (inv_dt + c * k) / c);
         Real r = vol * (inv_dt * E(i, j, b) + S_sca(i, j, b));
         // sign * (coefficient of the cell (ci, cj)) for every cell of a face flux.
         const auto face = [&](Real sign, const Real* cf, const int* ci, const int* cj) {
           for (int q = 0; q < 4; ++q) {
             const int other = map.resolve(ci[q], cj[q]);
             if (other >= 0)
-              add_entry(row_map, entries, values, row, map.row_E(other, b), sign * cf[q]);
+              add_entry(row_map, entries, values, row, map.row_E(other, b), sign * cf[q] / c);
             else
               r -= sign * cf[q] * E_ext(b);
           }
@@ -291,15 +291,15 @@ void assemble_temperature(const mesh::Grid& grid, const CellMap& map, Real inv_d
         Real diagonal = inv_dt * C;
         for (int b = 0; b < nb; ++b) {
           diagonal += k_abs(i, j, b) * f(i, j, b);
-          values(first + b) = -vol * c * k_abs(i, j, b);
+          values(first + b) = -vol * k_abs(i, j, b);
         }
         values(first + nb) = vol * diagonal;
         rhs(row) = vol * (inv_dt * C * 4.0 * sigma * Tn * Tn * Tn * Tn + S(i, j));
       });
 }
 
-/// x = (B^n, E^n) as the initial guess.
-void initial_guess(const mesh::Grid& grid, const CellMap& map, Real sigma, const FldState& state,
+/// x = (c E^n, B^n) as the initial guess.
+void initial_guess(const mesh::Grid& grid, const CellMap& map, Real c, Real sigma, const FldState& state,
                    const linalg::Vector& x) {
   const auto T = state.T;
   const auto E = state.E;
@@ -310,7 +310,7 @@ void initial_guess(const mesh::Grid& grid, const CellMap& map, Real sigma, const
         const int cell = map.cell(i, j);
         const Real t = T(i, j);
         x(map.row_B(cell)) = 4.0 * sigma * t * t * t * t;
-        for (int b = 0; b < nb; ++b) x(map.row_E(cell, b)) = E(i, j, b);
+        for (int b = 0; b < nb; ++b) x(map.row_E(cell, b)) = c * E(i, j, b);
       });
 }
 
@@ -350,14 +350,14 @@ void FldSolver::write_back(FldState& state) const {
                              std::to_string(map.j_of(first_bad) - map.ng) + "); the previous temperature is kept");
   const auto T = state.T;
   const auto E = state.E;
-  const Real sigma = constants_.sigma;
+  const Real sigma = constants_.sigma, c = constants_.c;
   const int nb = nb_;
   par_for(
       "radiation::fld_write_back", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
       KOKKOS_LAMBDA(int i, int j) {
         const int cell = map.cell(i, j);
         T(i, j) = math::pow(x(map.row_B(cell)) / (4.0 * sigma), 0.25);
-        for (int b = 0; b < nb; ++b) E(i, j, b) = x(map.row_E(cell, b));
+        for (int b = 0; b < nb; ++b) E(i, j, b) = x(map.row_E(cell, b)) / c;
       });
 }
 
@@ -368,7 +368,7 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   update_diffusion(fields, state);
   assemble(inv_dt, fields, state);
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
-  initial_guess(grid_, map, constants_.sigma, state, x_);
+  initial_guess(grid_, map, constants_.c, constants_.sigma, state, x_);
   const int per_cell = nb_ + 1;
   const auto describe = [map, per_cell](int row) {
     const int cell = row / per_cell, component = row % per_cell;

@@ -8,8 +8,9 @@
 // left and right-hand sides of each equation"), measured as cuDisc does on
 // the Jacobi-scaled system, against the larger of the right-hand side and the
 // row's diagonal term:
-//   max_i |r_i| / max(|b_i|, |A_ii x_i|) <= tolerance,
-// checked again on the true residual b - A x before a solve is accepted. Row
+//   max_i |r_i| / max(|b_i|, |A_ii x_i|, floor) <= tolerance,
+// floor = relative_floor x max_k max(|b_k|, |A_kk x0_k|) at the start of the
+// solve, checked again on the true residual b - A x before it is accepted. Row
 // scaling leaves it unchanged; rows whose terms cancel (radiative
 // equilibrium, a steady state with b_i = 0) are measured against their
 // diagonal term.
@@ -55,6 +56,10 @@ struct SolverSettings {
   Preconditioning preconditioning{0};
   bool fallback = true;
   int max_fill_level = 2;
+  /// Rows whose terms are below this fraction of the largest row's are
+  /// measured against that floor (an absolute accuracy for unknowns that are
+  /// ~0, e.g. a band far in the Wien tail).
+  Real relative_floor = 1e-12;
   /// Throws std::invalid_argument naming the bad setting.
   void validate() const;
   /// The rungs tried in order (the configured one first, no repeats).
@@ -97,9 +102,9 @@ class SolveFailure : public std::runtime_error {
 using RowDescriber = std::function<std::string(int row)>;
 
 /// Fractional residual of one row (RBO24 sec. 4.1) with diagonal term
-/// |A_ii x_i|; 0 when r = b = A_ii x_i = 0.
-KOKKOS_INLINE_FUNCTION Real fractional_residual(Real r, Real b, Real diagonal_term) {
-  const Real scale = math::fmax(math::fabs(b), diagonal_term);
+/// |A_ii x_i| and an absolute floor; 0 when r = b = A_ii x_i = floor = 0.
+KOKKOS_INLINE_FUNCTION Real fractional_residual(Real r, Real b, Real diagonal_term, Real floor = 0.0) {
+  const Real scale = math::fmax(math::fmax(math::fabs(b), diagonal_term), floor);
   if (scale > 0.0) return math::fabs(r) / scale;
   return r == 0.0 ? 0.0 : static_cast<Real>(HUGE_VAL);
 }
@@ -120,6 +125,8 @@ class LinearSolver {
   const CrsMatrix& matrix() const { return matrix_; }
   const CrsPattern& pattern() const { return pattern_; }
   const SolverSettings& settings() const { return settings_; }
+  /// Non-zeros of the ILU(fill_level) factors L + U (0 until that rung was needed).
+  int factor_nonzeros(int fill_level) const;
 
   /// Solves matrix() x = b with x as the initial guess. Throws SolveFailure
   /// (x unchanged) when every rung of the ladder fails.

@@ -8,7 +8,9 @@
 // Wu et al. (2012) face coefficients (mesh::diffusion_coefficients, the same
 // coefficients the dust diffusion uses). dt = infinity gives the steady state.
 //
-// Unknowns are ordered cell by cell, (E^1 .. E^nb, B) in each, cells with
+// Unknowns are c E^b (a flux, like B, so that the solver's relative floor
+// compares like with like) and B, ordered cell by cell, (c E^1 .. c E^nb, B)
+// in each, cells with
 // theta fastest; the pattern is built once, the values at every step, and the
 // system is solved by linalg::LinearSolver (ILU(k) + BiCGStab). B comes last
 // in its cell so that the level sets of the triangular factors follow the
@@ -83,6 +85,10 @@ class FldSolver {
   FldSolver& operator=(const FldSolver&) = delete;
 
   int bands() const { return nb_; }
+  int unknowns() const { return solver_->pattern().n_rows; }
+  int nonzeros() const { return solver_->pattern().nnz(); }
+  /// Non-zeros of the configured ILU factors (L + U).
+  int ilu_nonzeros() const { return solver_->factor_nonzeros(settings_.solver.preconditioning.fill_level); }
   const RadiationConstants& constants() const { return constants_; }
   FldFields make_fields() const;
   FldState make_state() const;

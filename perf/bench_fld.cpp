@@ -1,0 +1,140 @@
+// The temperature solver (RBO24 sec. 4.1) on an n x n (R, theta) disc with nb
+// FLD bands: one implicit step (Planck factors, limiter, Wu coefficients per
+// band, assembly, ILU(k) numeric, BiCGStab) and, apart, the ILU symbolic
+// phase of the set-up. The disc: R in [1, 100] au (log), theta in [0, 0.5],
+// rho kappa^b = 1e-14 (R / au)^-2 exp(-theta^2 / 2 0.05^2) w_b + 1e-22 cm^-1
+// (thick mid-plane, thin atmosphere), heated by a 2 R_sun, 4000 K star in 100
+// bins; dt = 1e-3 yr. Counters: unknowns, non-zeros, BiCGStab iterations per
+// solve, seconds per iteration, and the modelled bytes of one iteration
+// (2 spmv + 2 ILU applications + 12 vector passes) per second, to set against
+// bench_stream. RBO24's set-up (150 x 150 cells, 20 bands, 472,500 unknowns) is
+// registered only on a device back-end: Kokkos Kernels 3.4's host spiluk
+// allocates rows-per-level x rows integers per numeric call.
+#include <cmath>
+#include <type_traits>
+
+#include "bench_main.hpp"
+#include "mote/core/units.hpp"
+#include "mote/radiation/fld.hpp"
+#include "mote/radiation/irradiation.hpp"
+#include "mote/radiation/planck.hpp"
+
+namespace {
+
+using namespace mote;
+
+mesh::GridSpec disc(int n) {
+  mesh::GridSpec s;
+  s.nr = n;
+  s.ntheta = n;
+  s.r_edges = mesh::log_edges(units::cgs::au, 100.0 * units::cgs::au, n);
+  s.theta_edges = mesh::linear_edges(0.0, 0.5, n);
+  return s;
+}
+
+std::vector<double> log_edges_cm(double lo, double hi, int n) {
+  std::vector<double> e;
+  for (int k = 0; k <= n; ++k) e.push_back(lo * std::pow(hi / lo, double(k) / n));
+  return e;
+}
+
+/// rho kappa per band (n_bands = extent 2) with the band weight 1 / (1 + b).
+void disc_opacity(const mesh::Grid& grid, const RealView3& k) {
+  const auto Rc = grid.Rc;
+  const auto tc = grid.tc;
+  const int nb = static_cast<int>(k.extent(2));
+  const double au = units::cgs::au;
+  par_for(
+      "bench::disc_opacity", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        const Real x = Rc(i) / au, t = tc(j) / 0.05;
+        for (int b = 0; b < nb; ++b) k(i, j, b) = 1e-14 / (x * x) * math::exp(-0.5 * t * t) / (1.0 + b) + 1e-22;
+      });
+}
+
+radiation::FldSettings settings(int nb, int fill_level) {
+  radiation::FldSettings s;
+  s.band_edges_cm = log_edges_cm(1e-5, 0.3, nb);
+  s.boundaries.T_ext = 10.0;
+  s.solver.preconditioning = {fill_level};
+  return s;
+}
+
+/// T everywhere, E^b = f^b(T) 4 sigma T^4 / c (radiative equilibrium).
+void equilibrium(const radiation::FldSolver& fld, const std::vector<double>& edges, double T,
+                 radiation::FldState& state) {
+  Kokkos::deep_copy(state.T, T);
+  auto E = Kokkos::create_mirror_view(state.E);
+  const int nb = fld.bands();
+  const auto& k = fld.constants();
+  for (std::size_t i = 0; i < E.extent(0); ++i)
+    for (std::size_t j = 0; j < E.extent(1); ++j)
+      for (int b = 0; b < nb; ++b)
+        E(i, j, b) = radiation::band_fraction(b == 0 ? 0.0 : edges[b], b == nb - 1 ? 0.0 : edges[b + 1], T) * 4.0 *
+                     k.sigma * std::pow(T, 4) / k.c;
+  Kokkos::deep_copy(state.E, E);
+}
+
+void BM_FldStep(benchmark::State& bench) {
+  const int n = static_cast<int>(bench.range(0)), nb = static_cast<int>(bench.range(1));
+  const int fill = static_cast<int>(bench.range(2));
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  const mesh::Grid grid(disc(n), core::Comm::world());
+  radiation::FldSolver fld(grid, settings(nb, fill), constants);
+  auto fields = fld.make_fields();
+  disc_opacity(grid, fields.absorption);
+  disc_opacity(grid, fields.extinction);
+  Kokkos::deep_copy(fields.heat_capacity, 1e-12);
+  radiation::StellarIrradiation star(grid, {2.0 * units::cgs::R_sun, 4000.0}, log_edges_cm(1e-5, 0.3, 100),
+                                     settings(nb, fill).band_edges_cm, constants);
+  RealView3 k_star("bench::k_star", grid.nr_total(), grid.nt_total(), star.bins());
+  disc_opacity(grid, k_star);
+  star.heat(k_star, k_star, fields.heating, fields.scattering_source);
+  auto state = fld.make_state();
+  equilibrium(fld, settings(nb, fill).band_edges_cm, 30.0, state);
+  const double dt = 1e-3 * units::cgs::year;
+  fld.step(dt, fields, state);  // warm-up: first numeric phases, lagged D from a non-zero E
+  long iterations = 0, solves = 0;
+  double solve_seconds = 0.0;
+  for (auto _ : bench) {
+    const auto report = fld.step(dt, fields, state);
+    Kokkos::fence();
+    iterations += report.total_iterations();
+    for (const auto& a : report.attempts) solve_seconds += a.seconds;
+    ++solves;
+  }
+  const double rows = fld.unknowns(), nnz = fld.nonzeros(), nnz_ilu = fld.ilu_nonzeros();
+  const double per_iteration = 2.0 * (nnz * 12 + rows * 16) + 2.0 * (nnz_ilu * 12 + rows * 24) + 12.0 * rows * 8;
+  bench.counters["unknowns"] = rows;
+  bench.counters["nnz"] = nnz;
+  bench.counters["iterations_per_solve"] = double(iterations) / solves;
+  bench.counters["solve_s"] = solve_seconds / solves;
+  bench.counters["s_per_iteration"] = solve_seconds / std::max<long>(iterations, 1);
+  bench.counters["iteration_bytes_per_s"] = per_iteration * iterations / std::max(solve_seconds, 1e-30);
+}
+
+void BM_FldSetUp(benchmark::State& bench) {
+  const int n = static_cast<int>(bench.range(0)), nb = static_cast<int>(bench.range(1));
+  const int fill = static_cast<int>(bench.range(2));
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  const mesh::Grid grid(disc(n), core::Comm::world());
+  for (auto _ : bench) {
+    radiation::FldSolver fld(grid, settings(nb, fill), constants);
+    Kokkos::fence();
+  }
+}
+
+/// (n, bands, ILU fill level)
+void sizes(benchmark::internal::Benchmark* b) {
+  for (int nb : {5, 10, 20}) b->Args({32, nb, 0});
+  b->Args({32, 5, 1});
+  b->Args({64, 5, 0});
+  b->Args({64, 10, 0});
+  if (!std::is_same<ExecSpace, HostExecSpace>::value) {
+    for (int nb : {5, 10, 20, 40}) b->Args({150, nb, 0});
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_FldStep)->Apply(sizes)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FldSetUp)->Apply(sizes)->Unit(benchmark::kMillisecond)->UseRealTime();
