@@ -271,9 +271,10 @@ void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_d
       });
 }
 
-/// The B rows of eq. 48 (times V), with C = rho c_V / (16 sigma T^3) (eq. 47).
-void assemble_temperature(const mesh::Grid& grid, const CellMap& map, Real inv_dt, Real c, Real sigma,
-                          const FldFields& fields, const RealView2& T, const RealView3& f, const linalg::CrsMatrix& A,
+/// The B rows of eq. 48 (times V), with C = rho c_V / (16 sigma T^3) (eq. 47);
+/// the unknowns c E^b make their coefficients -V rho kappa_P^b.
+void assemble_temperature(const mesh::Grid& grid, const CellMap& map, Real inv_dt, Real sigma, const FldFields& fields,
+                          const RealView2& T, const RealView3& f, const linalg::CrsMatrix& A,
                           const linalg::Vector& rhs) {
   const auto row_map = A.graph.row_map;
   const auto values = A.values;
@@ -330,12 +331,13 @@ void FldSolver::assemble(double inv_dt, const FldFields& fields, const FldState&
   Kokkos::deep_copy(A.values, 0.0);
   for (int b = 0; b < nb_; ++b)
     assemble_band(grid_, map, b, inv_dt, constants_.c, coef_[b], fields, state.E, planck_, E_ext_, A, rhs_);
-  assemble_temperature(grid_, map, inv_dt, constants_.c, constants_.sigma, fields, state.T, planck_, A, rhs_);
+  assemble_temperature(grid_, map, inv_dt, constants_.sigma, fields, state.T, planck_, A, rhs_);
 }
 
-void FldSolver::write_back(FldState& state) const {
-  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
-  const auto x = x_;
+namespace {
+
+/// First cell whose solved B is <= 0 or not finite; n_cells when none.
+int first_bad_temperature(const CellMap& map, const linalg::Vector& x) {
   int first_bad = map.nr * map.nt;
   par_reduce(
       "radiation::fld_check_B", 0, map.nr * map.nt,
@@ -344,21 +346,34 @@ void FldSolver::write_back(FldState& state) const {
         if (!(B > 0.0 && math::isfinite(B)) && cell < first) first = cell;
       },
       Kokkos::Min<int>(first_bad));
-  if (first_bad < map.nr * map.nt)
-    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite in cell (" +
-                             std::to_string(map.i_of(first_bad) - map.ng) + ", " +
-                             std::to_string(map.j_of(first_bad) - map.ng) + "); the previous temperature is kept");
+  return first_bad;
+}
+
+/// T = (B / 4 sigma)^(1/4) and E^b = (c E^b) / c at the active cells.
+void unpack_solution(const mesh::Grid& grid, const CellMap& map, Real c, Real sigma, const linalg::Vector& x,
+                     const FldState& state) {
   const auto T = state.T;
   const auto E = state.E;
-  const Real sigma = constants_.sigma, c = constants_.c;
-  const int nb = nb_;
+  const int nb = map.nb;
   par_for(
-      "radiation::fld_write_back", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
+      "radiation::fld_write_back", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
       KOKKOS_LAMBDA(int i, int j) {
         const int cell = map.cell(i, j);
         T(i, j) = math::pow(x(map.row_B(cell)) / (4.0 * sigma), 0.25);
         for (int b = 0; b < nb; ++b) E(i, j, b) = x(map.row_E(cell, b)) / c;
       });
+}
+
+}  // namespace
+
+void FldSolver::write_back(FldState& state) const {
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  const int bad = first_bad_temperature(map, x_);
+  if (bad < map.nr * map.nt)
+    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite in cell (" +
+                             std::to_string(map.i_of(bad) - map.ng) + ", " + std::to_string(map.j_of(bad) - map.ng) +
+                             "); the previous temperature is kept");
+  unpack_solution(grid_, map, constants_.c, constants_.sigma, x_, state);
 }
 
 linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState& state) {

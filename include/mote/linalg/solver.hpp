@@ -135,7 +135,6 @@ class LinearSolver {
   SolveReport try_solve(const Vector& b, const Vector& x);
 
  private:
-  void scale_system(const Vector& b);
   SolveAttempt attempt(const Preconditioning& preconditioning, const Vector& x);
   IluFactors* factors_for(int fill_level);
   std::string failure_message(const SolveReport& report, const RowDescriber& describe) const;

@@ -108,6 +108,11 @@ class FldSolver {
   const RealView3& planck_factors() const { return planck_; }
   /// External field E_ext^b at the open sides.
   const RealView1& external_field() const { return E_ext_; }
+  /// The system of the last step: matrix (unscaled), right-hand side and
+  /// solution, unknowns (c E^1 .. c E^nb, B) per cell.
+  const linalg::CrsMatrix& matrix() const { return solver_->matrix(); }
+  const linalg::Vector& rhs() const { return rhs_; }
+  const linalg::Vector& solution() const { return x_; }
 
  private:
   void update_diffusion(const FldFields& fields, const FldState& state);
