@@ -12,6 +12,14 @@ using KokkosSparse::Experimental::SPILUKAlgorithm;
 using KokkosSparse::Experimental::SPTRSVAlgorithm;
 }  // namespace
 
+// Kokkos Kernels 4 promoted spiluk and sptrsv out of Experimental (3.4 has
+// them only there; 4.x deprecates the old names).
+#if defined(KOKKOSKERNELS_VERSION) && KOKKOSKERNELS_VERSION >= 40000
+namespace triangular = KokkosSparse;
+#else
+namespace triangular = KokkosSparse::Experimental;
+#endif
+
 IluFactors::IluFactors(const std::string& name, const CrsPattern& pattern, int fill_level)
     : fill_level_(fill_level),
       A_row_map_(pattern.row_map),
@@ -42,14 +50,14 @@ IluFactors::~IluFactors() = default;
 
 void IluFactors::symbolic(const CrsPattern& pattern, int estimate) {
   ilu_handle_.create_spiluk_handle(SPILUKAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, estimate, estimate);
-  KokkosSparse::Experimental::spiluk_symbolic(&ilu_handle_, fill_level_, A_row_map_, A_entries_, L_row_map_, L_entries_,
-                                              U_row_map_, U_entries_);
+  triangular::spiluk_symbolic(&ilu_handle_, fill_level_, A_row_map_, A_entries_, L_row_map_, L_entries_, U_row_map_,
+                              U_entries_);
   Kokkos::resize(L_entries_, ilu_handle_.get_spiluk_handle()->get_nnzL());
   Kokkos::resize(U_entries_, ilu_handle_.get_spiluk_handle()->get_nnzU());
   lower_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, true);
   upper_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, false);
-  KokkosSparse::Experimental::sptrsv_symbolic(&lower_handle_, L_row_map_, L_entries_);
-  KokkosSparse::Experimental::sptrsv_symbolic(&upper_handle_, U_row_map_, U_entries_);
+  triangular::sptrsv_symbolic(&lower_handle_, L_row_map_, L_entries_);
+  triangular::sptrsv_symbolic(&upper_handle_, U_row_map_, U_entries_);
 }
 
 namespace {
@@ -75,15 +83,15 @@ int first_bad_pivot(const RowMap& U_row_map, const Entries& U_entries, const Val
 
 int IluFactors::factorise(const CrsMatrix& A) {
   auto A_values = A.values;
-  KokkosSparse::Experimental::spiluk_numeric(&ilu_handle_, fill_level_, A_row_map_, A_entries_, A_values, L_row_map_,
-                                             L_entries_, L_values_, U_row_map_, U_entries_, U_values_);
+  triangular::spiluk_numeric(&ilu_handle_, fill_level_, A_row_map_, A_entries_, A_values, L_row_map_, L_entries_,
+                             L_values_, U_row_map_, U_entries_, U_values_);
   const int bad = first_bad_pivot(U_row_map_, U_entries_, U_values_);
   return bad < static_cast<int>(U_row_map_.extent(0)) - 1 ? bad : -1;
 }
 
 void IluFactors::apply(const Vector& y, const Vector& z) {
-  KokkosSparse::Experimental::sptrsv_solve(&lower_handle_, L_row_map_, L_entries_, L_values_, y, between_);
-  KokkosSparse::Experimental::sptrsv_solve(&upper_handle_, U_row_map_, U_entries_, U_values_, between_, z);
+  triangular::sptrsv_solve(&lower_handle_, L_row_map_, L_entries_, L_values_, y, between_);
+  triangular::sptrsv_solve(&upper_handle_, U_row_map_, U_entries_, U_values_, between_, z);
 }
 
 }  // namespace mote::linalg
