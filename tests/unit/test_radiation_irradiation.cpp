@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "mote/core/units.hpp"
+#include "mote/radiation/dust_opacities.hpp"
 #include "mote/radiation/fld.hpp"
 #include "mote/radiation/irradiation.hpp"
 
@@ -108,6 +109,55 @@ TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
     }
   std::cout << "D2: " << solves << " steady-state solves; max |T / T_thin - 1| = " << worst << "\n";
   EXPECT_LE(worst, 0.01);
+}
+
+/// Two grey species (kappa_abs 3 and 10, kappa_sca 1 and 0 cm^2/g) at
+/// rho = 1e-12 and 2e-12 g cm^-3 in gas of 1e-10 g cm^-3 with the opacity
+/// floor kappa_gas = 1e-3 cm^2/g: every band and bin gets the density-weighted sum.
+TEST(DustOpacities, FieldsAreDensityWeightedSumsWithTheGasFloor) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto bins = stellar_bins();
+  std::vector<double> centres;
+  for (std::size_t k = 0; k + 1 < bins.size(); ++k) centres.push_back(std::sqrt(bins[k] * bins[k + 1]));
+  auto table = radiation::grey_opacity({1e-4, 1e-2}, centres, 0.0, 0.0);
+  for (int l = 0; l < table.wavelengths(); ++l) {
+    table.absorption[l] = 3.0;
+    table.scattering[l] = 1.0;
+    table.absorption[table.wavelengths() + l] = 10.0;
+  }
+  const auto kappa =
+      radiation::DustOpacities::from_table(table, bins, fld_bands, 100.0, units::UnitSystem::cgs_units());
+  RealView3 rho_dust("rho_dust", grid.nr_total(), grid.nt_total(), 2);
+  RealView2 rho_gas("rho_gas", grid.nr_total(), grid.nt_total());
+  auto rd = Kokkos::create_mirror_view(rho_dust);
+  for (std::size_t i = 0; i < rd.extent(0); ++i)
+    for (std::size_t j = 0; j < rd.extent(1); ++j) {
+      rd(i, j, 0) = 1e-12;
+      rd(i, j, 1) = 2e-12;
+    }
+  Kokkos::deep_copy(rho_dust, rd);
+  Kokkos::deep_copy(rho_gas, 1e-10);
+  radiation::FldSettings settings;
+  settings.band_edges_cm = fld_bands;
+  radiation::FldSolver fld(grid, settings, radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  radiation::fill_fld_opacities(kappa, rho_dust, rho_gas, 1e-3, fields);
+  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), static_cast<int>(centres.size()));
+  RealView3 abs("abs", grid.nr_total(), grid.nt_total(), static_cast<int>(centres.size()));
+  radiation::fill_stellar_opacities(kappa, rho_dust, rho_gas, 1e-3, ext, abs);
+  auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
+  auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
+  auto se = Kokkos::create_mirror_view_and_copy(HostSpace(), ext);
+  auto sa = Kokkos::create_mirror_view_and_copy(HostSpace(), abs);
+  const double absorption = 3e-12 + 20e-12 + 1e-13, extinction = 4e-12 + 20e-12 + 1e-13;
+  for (int b = 0; b < 4; ++b) {
+    EXPECT_NEAR(a(3, 4, b), absorption, 1e-12 * absorption);
+    EXPECT_NEAR(x(3, 4, b), extinction, 1e-9 * extinction);  // Rosseland mean of a grey total
+  }
+  EXPECT_NEAR(se(5, 2, 7), extinction, 1e-12 * extinction);
+  EXPECT_NEAR(sa(5, 2, 7), absorption, 1e-12 * absorption);
+  RealView3 one_species("rho_1", grid.nr_total(), grid.nt_total(), 1);
+  EXPECT_THROW(radiation::fill_fld_opacities(kappa, one_species, rho_gas, 1e-3, fields), std::invalid_argument);
 }
 
 TEST(Irradiation, BadStarIsRefused) {
