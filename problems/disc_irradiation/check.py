@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Check a disc_irradiation run (VALIDATION D2).
+
+    check.py RUN_DIR [--plot FILE.png] [--thin-tau 1e-3]
+
+From the last snapshot: T against the optically thin blackbody temperature
+T_thin = T_star (R_star / 2 r)^(1/2), r = R / cos(theta) the distance to the
+star, in every cell whose radial stellar optical depth (grey: the column of
+rho_d kappa_abs along the ray, computed here from rho_gas and the deck) is
+below --thin-tau; threshold 1 % (VALIDATION D2). Prints PASS/FAIL lines and
+'N passed, M failed'; exits non-zero on a failure.
+"""
+import argparse
+import os
+import sys
+import tomllib
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import mote  # noqa: E402
+
+R_SUN, AU = 6.957e10, 1.495978707e13
+THRESHOLD = 0.01
+
+
+def analyse(run_dir, thin_tau=1e-3):
+    snap = mote.last_snapshot(run_dir)
+    deck = tomllib.loads(snap.deck)
+    rad, disc = deck["radiation"], deck["irradiation"]
+    length = snap.units["length_cm"]
+    R = snap.data["R_centres"] * length
+    theta = snap.data["theta_centres"]
+    T = snap.fields["T"].reshape(len(R), len(theta))
+    rho_d = snap.cgs("rho_gas").reshape(len(R), len(theta)) * disc["dust_to_gas"]
+    kappa = rad.get("kappa_abs", 1.0) + rad.get("kappa_sca", 0.0)
+    dR = np.gradient(R)
+    tau = np.cumsum(rho_d * kappa * dR[:, None] / np.cos(theta)[None, :], axis=0)
+    r = R[:, None] / np.cos(theta)[None, :]
+    T_thin = rad["star_T_eff"] * np.sqrt(rad["star_radius"] * R_SUN / (2.0 * r))
+    thin = tau < thin_tau
+    error = np.abs(T / T_thin - 1.0)
+    return {"cells_thin": int(thin.sum()), "cells": T.size, "max_error_thin": float(error[thin].max()),
+            "R": R, "theta": theta, "T": T, "T_thin": T_thin}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("run_dir")
+    parser.add_argument("--plot")
+    parser.add_argument("--thin-tau", type=float, default=1e-3)
+    args = parser.parse_args()
+    out = analyse(args.run_dir, args.thin_tau)
+    failed = 0
+    print(f"INFO optically thin cells (tau_star < {args.thin_tau:g}): {out['cells_thin']} of {out['cells']}")
+    ok = out["cells_thin"] > 0 and out["max_error_thin"] <= THRESHOLD
+    failed += not ok
+    print(f"{'PASS' if ok else 'FAIL'} D2 max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {THRESHOLD:g}")
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 4))
+        r = out["R"][:, None] / np.cos(out["theta"])[None, :] / AU
+        for j in (0, len(out["theta"]) // 2, len(out["theta"]) - 1):
+            ax.loglog(r[:, j], out["T"][:, j], label=f"mote, theta = {out['theta'][j]:.2f}")
+        ax.loglog(r[:, 0], out["T_thin"][:, 0], "k--", label="T_star (R_star / 2r)^1/2")
+        ax.set_xlabel("distance to the star r [au]")
+        ax.set_ylabel("T [K]")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+    print(f"{1 - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

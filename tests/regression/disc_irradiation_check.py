@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""disc_irradiation: VALIDATION D2 from the shipped deck, through the problem's
+own check (T within 1 % of T_star (R_star / 2r)^(1/2) in every optically thin
+cell), and a restart from its checkpoint that must reproduce the steady state
+bit for bit.
+
+usage: disc_irradiation_check.py EXE WORKDIR
+"""
+import os
+import shutil
+import sys
+
+import numpy as np
+from harness import Checks, run
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_irradiation"))
+import check as irradiation  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "python"))
+import mote  # noqa: E402
+
+exe, work = sys.argv[1], sys.argv[2]
+deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_irradiation", "disc_irradiation.toml")
+checks = Checks()
+
+out_dir = os.path.join(work, "default")
+shutil.rmtree(out_dir, ignore_errors=True)
+run([exe, deck, f"output.dir={out_dir}"])
+out = irradiation.analyse(out_dir)
+checks.check(out["cells_thin"] == out["cells"], f"every cell optically thin ({out['cells_thin']} of {out['cells']})")
+checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
+             f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {irradiation.THRESHOLD}")
+
+# Two steps of 0.5: the restart from the checkpoint after the first continues bit for bit.
+both = os.path.join(work, "two_steps")
+shutil.rmtree(both, ignore_errors=True)
+run([exe, deck, f"output.dir={both}", "output.snapshot_dt=0.5", "output.checkpoint_every=1"])
+first = mote.list_snapshots(both)
+restarted = os.path.join(work, "restarted")
+shutil.rmtree(restarted, ignore_errors=True)
+shutil.copytree(both, restarted)
+for name in os.listdir(restarted):
+    if name.startswith("snapshot_00002") or name.startswith("checkpoint_00002"):
+        os.remove(os.path.join(restarted, name))
+run([exe, deck, f"output.dir={restarted}", "output.snapshot_dt=0.5", "output.checkpoint_every=1", "--restart",
+     "latest"])
+a = mote.read_snapshot(first[-1]).fields["T"]
+b = mote.last_snapshot(restarted).fields["T"]
+checks.check(np.array_equal(a, b), "restart from the step-1 checkpoint reproduces T bit for bit")
+sys.exit(checks.finish())
