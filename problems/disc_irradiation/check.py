@@ -7,7 +7,9 @@ From the last snapshot: T against the optically thin blackbody temperature
 T_thin = T_star (R_star / 2 r)^(1/2), r = R / cos(theta) the distance to the
 star, in every cell whose radial stellar optical depth (grey: the column of
 rho_d kappa_abs along the ray, computed here from rho_gas and the deck) is
-below --thin-tau; threshold 1 % (VALIDATION D2). Prints PASS/FAIL lines and
+below --thin-tau; threshold 1 % (VALIDATION D2). And the steady-state energy
+balance from history.txt: the luminosity leaving through the open sides
+equals the absorbed starlight to 1e-3 (the D5 criterion). Prints PASS/FAIL lines and
 'N passed, M failed'; exits non-zero on a failure.
 """
 import argparse
@@ -22,6 +24,7 @@ import mote  # noqa: E402
 
 R_SUN, AU = 6.957e10, 1.495978707e13
 THRESHOLD = 0.01
+BALANCE = 1e-3  # VALIDATION D5's steady-state energy balance
 
 
 def analyse(run_dir, thin_tau=1e-3):
@@ -40,7 +43,9 @@ def analyse(run_dir, thin_tau=1e-3):
     T_thin = rad["star_T_eff"] * np.sqrt(rad["star_radius"] * R_SUN / (2.0 * r))
     thin = tau < thin_tau
     error = np.abs(T / T_thin - 1.0)
-    return {"cells_thin": int(thin.sum()), "cells": T.size, "max_error_thin": float(error[thin].max()),
+    hist = mote.read_history(os.path.join(run_dir, "history.txt"))
+    balance = float(hist["open_luminosity"][-1] / hist["absorbed_star"][-1] - 1.0)
+    return {"energy_balance": balance, "cells_thin": int(thin.sum()), "cells": T.size, "max_error_thin": float(error[thin].max()),
             "R": R, "theta": theta, "T": T, "T_thin": T_thin}
 
 
@@ -56,6 +61,10 @@ def main():
     ok = out["cells_thin"] > 0 and out["max_error_thin"] <= THRESHOLD
     failed += not ok
     print(f"{'PASS' if ok else 'FAIL'} D2 max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {THRESHOLD:g}")
+    ok_balance = abs(out["energy_balance"]) <= BALANCE
+    failed += not ok_balance
+    print(f"{'PASS' if ok_balance else 'FAIL'} energy balance: open-side luminosity / absorbed starlight - 1 = "
+          f"{out['energy_balance']:.3e} (|.| <= {BALANCE:g})")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -70,7 +79,7 @@ def main():
         ax.legend()
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
-    print(f"{1 - failed} passed, {failed} failed")
+    print(f"{2 - failed} passed, {failed} failed")
     return 1 if failed else 0
 
 

@@ -176,7 +176,9 @@ class IrradiatedDisc : public io::Simulation {
   }
 
   std::vector<io::Diagnostic> diagnostics() const override {
-    return {{"absorbed_star", absorbed_power(grid_, fields_)}, {"steady_solves", double(solves_)}};
+    return {{"absorbed_star", absorbed_power(grid_, fields_)},
+            {"open_luminosity", fld_.open_boundary_luminosity(state_)},
+            {"steady_solves", double(solves_)}};
   }
 
   std::optional<io::NonFinite> find_non_finite() const override {

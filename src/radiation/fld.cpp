@@ -421,4 +421,49 @@ int FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, d
                            " solves (last relative temperature change " + std::to_string(change) + ")");
 }
 
+namespace {
+
+/// Outward flux x area of band b through the open boundary faces: inner and
+/// outer radial faces (row j), lower and upper theta faces (column i).
+double open_face_power(const CellMap& map, int b, const mesh::DiffusionCoefficients& coef, const RealView3& E,
+                       const RealView1& E_ext) {
+  const int ng = map.ng, nr = map.nr, nt = map.nt;
+  const auto value = [=] KOKKOS_FUNCTION(int i, int j) {
+    const int other = map.resolve(i, j);
+    return other >= 0 ? E(map.i_of(other), map.j_of(other), b) : E_ext(b);
+  };
+  double power = 0.0;
+  par_reduce(
+      "radiation::fld_open_face_power", 0, 2 * (nt + nr),
+      KOKKOS_LAMBDA(int f, double& sum) {
+        if (f < 2 * nt) {  // radial faces: f < nt inner, else outer
+          const bool outer = f >= nt;
+          if (outer ? map.reflect_outer : map.reflect_inner) return;
+          const int I = outer ? ng + nr : ng, j = ng + f % nt;
+          const Real flux = coef.radial(I, j, 0) * value(I - 1, j) + coef.radial(I, j, 1) * value(I, j) +
+                            coef.radial(I, j, 2) * value(I - 1, j - 1) + coef.radial(I, j, 3) * value(I, j + 1);
+          sum += outer ? flux : -flux;
+        } else {  // theta faces: lower, then upper
+          const int g = f - 2 * nt;
+          const bool upper = g >= nr;
+          if (upper ? map.reflect_upper : map.reflect_lower) return;
+          const int J = upper ? ng + nt : ng, i = ng + g % nr;
+          const Real flux = coef.theta(i, J, 0) * value(i, J - 1) + coef.theta(i, J, 1) * value(i, J) +
+                            coef.theta(i, J, 2) * value(i - 1, J - 1) + coef.theta(i, J, 3) * value(i + 1, J);
+          sum += upper ? flux : -flux;
+        }
+      },
+      power);
+  return power;
+}
+
+}  // namespace
+
+double FldSolver::open_boundary_luminosity(const FldState& state) const {
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  double total = 0.0;
+  for (int b = 0; b < nb_; ++b) total += open_face_power(map, b, coef_[b], state.E, E_ext_);
+  return total;
+}
+
 }  // namespace mote::radiation

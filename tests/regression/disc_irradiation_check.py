@@ -30,6 +30,8 @@ out = irradiation.analyse(out_dir)
 checks.check(out["cells_thin"] == out["cells"], f"every cell optically thin ({out['cells_thin']} of {out['cells']})")
 checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
              f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {irradiation.THRESHOLD}")
+checks.check(abs(out["energy_balance"]) <= irradiation.BALANCE,
+             f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {irradiation.BALANCE})")
 
 # Two steps of 0.5: the restart from the checkpoint after the first continues bit for bit.
 both = os.path.join(work, "two_steps")

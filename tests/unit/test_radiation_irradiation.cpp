@@ -107,7 +107,13 @@ TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
       const double expected = T_star * std::sqrt(R_star / (2.0 * r));
       worst = std::max(worst, std::fabs(T(i, j) / expected - 1.0));
     }
-  std::cout << "D2: " << solves << " steady-state solves; max |T / T_thin - 1| = " << worst << "\n";
+  // Steady-state energy balance: the power leaving through the open sides is
+  // the absorbed (and scattered) starlight.
+  const double absorbed = absorbed_power(grid, fields.heating, fields.scattering_source);
+  const double balance = fld.open_boundary_luminosity(state) / absorbed - 1.0;
+  std::cout << "D2: " << solves << " steady-state solves; max |T / T_thin - 1| = " << worst
+            << "; open-side luminosity / absorbed - 1 = " << balance << "\n";
+  EXPECT_LE(std::fabs(balance), 1e-3);
   EXPECT_LE(worst, 0.01);
 }
 

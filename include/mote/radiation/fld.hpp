@@ -104,6 +104,12 @@ class FldSolver {
   /// std::runtime_error after `max_solves` (state holds the last iterate).
   int relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6, int max_solves = 30);
 
+  /// Radiative power leaving through the open sides (per radian of azimuth,
+  /// summed over bands): the face fluxes of E^b with the diffusion
+  /// coefficients of the last step, the flux of the linear system itself, so
+  /// that in a steady state it equals the power the sources put in.
+  double open_boundary_luminosity(const FldState& state) const;
+
   /// Planck factors f^b(T) at the active cells (nr_total, nt_total, nb) of the last step.
   const RealView3& planck_factors() const { return planck_; }
   /// External field E_ext^b at the open sides.
