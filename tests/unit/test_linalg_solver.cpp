@@ -12,6 +12,7 @@
 #include <iostream>
 #include <vector>
 
+#include "dense_reference.hpp"
 #include "mote/linalg/crs_pattern.hpp"
 #include "mote/linalg/solver.hpp"
 
@@ -23,7 +24,9 @@ using linalg::LinearSolver;
 using linalg::Offset;
 using linalg::Ordinal;
 using linalg::SolverSettings;
-using Dense = std::vector<std::vector<double>>;
+using test::Dense;
+using test::dense_solve;
+using test::to_dense;
 
 /// Pattern of the 5-point stencil on an n x n grid, row = i + n j.
 CrsPattern five_point_pattern(int n) {
@@ -64,42 +67,6 @@ void convection_diffusion_values(const LinearSolver& solver, int n, double cx, d
           values(k) = scale * a;
         }
       });
-}
-
-Dense to_dense(const linalg::CrsMatrix& A) {
-  const int n = A.numRows();
-  auto row_map = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.row_map);
-  auto cols = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.entries);
-  auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), A.values);
-  Dense dense(n, std::vector<double>(n, 0.0));
-  for (int r = 0; r < n; ++r)
-    for (Offset k = row_map(r); k < row_map(r + 1); ++k) dense[r][cols(k)] = values(k);
-  return dense;
-}
-
-/// Gaussian elimination with partial pivoting.
-std::vector<double> dense_solve(Dense A, std::vector<double> b) {
-  const int n = static_cast<int>(b.size());
-  for (int c = 0; c < n; ++c) {
-    int p = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::fabs(A[r][c]) > std::fabs(A[p][c])) p = r;
-    std::swap(A[c], A[p]);
-    std::swap(b[c], b[p]);
-    for (int r = c + 1; r < n; ++r) {
-      const double f = A[r][c] / A[c][c];
-      if (f == 0.0) continue;
-      for (int k = c; k < n; ++k) A[r][k] -= f * A[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  std::vector<double> x(n);
-  for (int r = n - 1; r >= 0; --r) {
-    double s = b[r];
-    for (int k = r + 1; k < n; ++k) s -= A[r][k] * x[k];
-    x[r] = s / A[r][r];
-  }
-  return x;
 }
 
 std::vector<double> to_host(const linalg::Vector& v) {

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <vector>
 
+#include "dense_reference.hpp"
 #include "mote/radiation/fld.hpp"
 #include "mote/radiation/flux_limiter.hpp"
 #include "mote/radiation/planck.hpp"
@@ -298,40 +299,6 @@ TEST(FldD3, ThickDiffusionOfAGaussianConvergesAtSecondOrder) {
 
 // ---- D1 on the assembled FLD matrix ---------------------------------------
 
-std::vector<std::vector<double>> dense(const linalg::CrsMatrix& A) {
-  auto row_map = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.row_map);
-  auto cols = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.entries);
-  auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), A.values);
-  std::vector<std::vector<double>> M(A.numRows(), std::vector<double>(A.numRows(), 0.0));
-  for (int r = 0; r < A.numRows(); ++r)
-    for (int k = row_map(r); k < row_map(r + 1); ++k) M[r][cols(k)] = values(k);
-  return M;
-}
-
-/// Gaussian elimination with partial pivoting.
-std::vector<double> direct_solve(std::vector<std::vector<double>> A, std::vector<double> b) {
-  const int n = static_cast<int>(b.size());
-  for (int c = 0; c < n; ++c) {
-    int p = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::fabs(A[r][c]) > std::fabs(A[p][c])) p = r;
-    std::swap(A[c], A[p]);
-    std::swap(b[c], b[p]);
-    for (int r = c + 1; r < n; ++r) {
-      const double f = A[r][c] / A[c][c];
-      for (int k = c; k < n; ++k) A[r][k] -= f * A[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  std::vector<double> x(n);
-  for (int r = n - 1; r >= 0; --r) {
-    double s = b[r];
-    for (int k = r + 1; k < n; ++k) s -= A[r][k] * x[k];
-    x[r] = s / A[r][r];
-  }
-  return x;
-}
-
 /// A 6 x 5 disc patch with 3 bands, open inner/outer/upper sides, a
 /// non-uniform medium and starlight-like heating: the FLD step's solution
 /// against a dense direct solve of the same assembled system.
@@ -365,11 +332,11 @@ TEST(FldD1, AssembledSystemMatchesDirectSolve) {
   fill(state.E, 1e-9);
   fld.step(1e6, fields, state);
   fld.step(1e6, fields, state);  // a second step: the limiter from a structured E
-  const auto A = dense(fld.matrix());
+  const auto A = test::to_dense(fld.matrix());
   auto b_h = Kokkos::create_mirror_view_and_copy(HostSpace(), fld.rhs());
   auto x_h = Kokkos::create_mirror_view_and_copy(HostSpace(), fld.solution());
   const std::vector<double> b(b_h.data(), b_h.data() + b_h.extent(0));
-  const auto x_direct = direct_solve(A, b);
+  const auto x_direct = test::dense_solve(A, b);
   double worst = 0.0;
   for (std::size_t r = 0; r < b.size(); ++r)
     worst = std::max(worst, std::fabs(x_h(r) - x_direct[r]) / std::fabs(x_direct[r]));
