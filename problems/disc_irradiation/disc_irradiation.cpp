@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "mote/core/exit_codes.hpp"
+#include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
 #include "mote/mesh/grid_output.hpp"
 #include "mote/radiation/dust_opacities.hpp"
@@ -128,8 +129,9 @@ class IrradiatedDisc : public io::Simulation {
       if (steady_ && !relaxed_) {
         solves_ = fld_.relax_to_steady_state(fields_, state_);
         relaxed_ = true;
+        logging::info("radiation: steady state after ", solves_, " solves");
       } else if (!steady_) {
-        fld_.step(dt, fields_, state_);
+        logging::info("radiation: ", fld_.step(dt, fields_, state_).summary());
       }
     } catch (const std::runtime_error& e) {
       throw core::NumericalError(e.what());
