@@ -10,8 +10,8 @@
 
 namespace mote::io {
 
-HistoryFile::HistoryFile(const std::string& path, const core::Comm& comm, long long restart_step)
-    : path_(path), root_(comm.is_root()) {
+HistoryFile::HistoryFile(const std::string& path, const core::Comm& comm, std::string run_id, long long restart_step)
+    : path_(path), run_id_(std::move(run_id)), root_(comm.is_root()) {
   if (!root_) return;
   std::string kept;
   if (restart_step >= 0) {
@@ -47,7 +47,7 @@ void HistoryFile::record(long long step, double time, double dt, const std::vect
   if (!header_written_) {
     out_ << "# step time dt";
     for (const auto& d : diagnostics) out_ << " " << d.name;
-    out_ << "\n";
+    out_ << "\n# run_id " << run_id_ << "\n";
     header_written_ = true;
   }
   out_ << step << logging::format(" %.17g %.17g", time, dt);

@@ -65,8 +65,9 @@ std::string usage(const ProblemDefinition& p) {
          "       " +
          p.name +
          " --help | --version | --deck-reference\n\n"
-         "  --restart FILE    continue from a checkpoint; without a deck, the deck stored in it is used\n"
-         "  --restart latest  continue from the newest checkpoint in output.dir\n"
+         "  --restart FILE    continue from a checkpoint; without a deck, the deck stored in it is used,\n"
+         "                    writing beside the checkpoint, without its run.max_steps\n"
+         "  --restart latest  continue from the newest checkpoint in output.dir (of the directory's own run)\n"
          "  --check           validate the deck (every rule the run applies), print it resolved, and exit\n"
          "  --version         print the version of mote and exit\n"
          "  --kokkos-help     Kokkos's own options\n"
@@ -112,6 +113,34 @@ std::string deck_from_checkpoint(const std::string& path, const core::Comm& comm
   return file.read_attribute_string("/", "deck");
 }
 
+/// `text` as a TOML basic string.
+std::string toml_string(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+/// The deck of a restart from `checkpoint` without a deck argument: the stored
+/// one, writing beside the checkpoint (never into its output.dir resolved from
+/// the current directory) and without its stop condition run.max_steps; the
+/// command line's overrides come last and win over both.
+core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, const core::DeckSchema& schema,
+                       const core::Comm& comm) {
+  std::string text;
+  try {
+    text = deck_from_checkpoint(checkpoint, comm);
+  } catch (const std::exception& e) {
+    throw core::DeckError("cannot read the deck stored in checkpoint '" + checkpoint + "': " + e.what());
+  }
+  const auto dir = std::filesystem::absolute(checkpoint).parent_path().lexically_normal();
+  std::vector<std::string> overrides = {"output.dir=" + toml_string(dir.string()), "run.max_steps=0"};
+  overrides.insert(overrides.end(), cl.overrides.begin(), cl.overrides.end());
+  return core::Deck::parse(text, "deck of " + checkpoint, schema, overrides);
+}
+
 }  // namespace
 
 core::DeckRule requires_choice(const std::string& problem, const std::string& dotted, const std::string& value) {
@@ -145,13 +174,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     if (cl.deck_path) {
       deck = core::Deck::load(*cl.deck_path, schema, cl.overrides);
     } else if (cl.restart && *cl.restart != "latest") {
-      std::string text;
-      try {
-        text = deck_from_checkpoint(*cl.restart, comm);
-      } catch (const std::exception& e) {
-        throw core::DeckError("cannot read the deck stored in checkpoint '" + *cl.restart + "': " + e.what());
-      }
-      deck = core::Deck::parse(text, "deck of " + *cl.restart, schema, cl.overrides);
+      deck = stored_deck(*cl.restart, cl, schema, comm);
     } else {
       throw core::DeckError("no deck given (see --help)");
     }

@@ -86,7 +86,12 @@ void RunSettings::declare(core::DeckSchema& schema) {
   schema.table("output", "Snapshots, checkpoints and history.");
   schema.string("output.dir")
       .default_value(std::string("output"))
-      .doc("Output directory (created after the deck is validated).");
+      .doc("Output directory (created after the deck is validated), locked by the run while it runs.");
+  schema.boolean("output.overwrite")
+      .default_value(false)
+      .doc(
+          "Let a new run delete the snapshots, checkpoints and history of an earlier run in output.dir; without it "
+          "such a directory is refused (a restart of that run needs no overwrite).");
   schema.real("output.snapshot_dt")
       .default_value(0.0)
       .unit("code time")
@@ -119,6 +124,7 @@ RunSettings RunSettings::from_deck(const core::Deck& deck) {
   s.progress_interval = deck.real("run.progress_interval");
   s.units = deck.string("run.units");
   s.output_dir = deck.string("output.dir");
+  s.overwrite = deck.boolean("output.overwrite");
   s.snapshot_dt = deck.real("output.snapshot_dt");
   s.checkpoint_every = deck.integer("output.checkpoint_every");
   s.checkpoint_wall = deck.real("output.checkpoint_wall");
@@ -145,6 +151,7 @@ void RunLoop::write_run_attributes(H5File& file, const State& s) const {
   file.write_attribute("/", "time", s.time);
   file.write_attribute("/", "step", static_cast<std::int64_t>(s.step));
   file.write_attribute("/", "problem", problem_);
+  file.write_attribute("/", "run_id", run_id_);
   file.write_attribute("/", "code", std::string("mote ") + MOTE_VERSION_STRING);
   file.write_attribute("/", "deck", deck_.to_toml());
   file.write_attribute("/", "unit_system", units_.name);
@@ -204,18 +211,20 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
   s.next_checkpoint += 1;
 }
 
-void RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
+RestartSource RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
+  RestartSource source{path, ""};
   try {
-    restore_checkpoint(sim, s, path);
+    source.run_id = restore_checkpoint(sim, s, path);
   } catch (const core::InputError&) {
     throw;
   } catch (const std::exception& e) {
     throw core::InputError("cannot restart from checkpoint '" + path + "': " + e.what());
   }
   logging::info("restarted from ", path, " at step ", s.step, ", t = ", logging::format("%.10g", s.time));
+  return source;
 }
 
-void RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::string& path) {
+std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::string& path) {
   H5File file(path, H5File::Mode::Read, comm_);
   if (file.read_attribute_string("/", "problem") != problem_)
     throw core::InputError("checkpoint '" + path + "' belongs to problem '" +
@@ -227,6 +236,7 @@ void RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::string& p
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);
+  return file.has_attribute("/", "run_id") ? file.read_attribute_string("/", "run_id") : "";
 }
 
 bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
@@ -260,9 +270,11 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   SignalGuard signals;
   const double wall_start = wall_now();
   State s;
-  if (restart) read_checkpoint(sim, s, *restart);
-  create_directory(settings_.output_dir, comm_);
-  HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_,
+  std::optional<RestartSource> source;
+  if (restart) source = read_checkpoint(sim, s, *restart);
+  const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
+  run_id_ = directory.run_id();
+  HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
                       restart ? s.step : -1);
   const long long start_step = s.step;
   if (!restart) {

@@ -8,11 +8,13 @@ bins per decade for both splits.
     coag_analytic.py COAG_KERNELS_EXE WORK_DIR"""
 import os
 import re
+import shutil
 import sys
 
 from harness import Checks, fit_order, run, ROOT
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 deck = os.path.join(ROOT, "problems", "coag_kernels", "coag_kernels.toml")
 check_py = os.path.join(ROOT, "problems", "coag_kernels", "check.py")
 c = Checks()

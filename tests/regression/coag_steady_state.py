@@ -5,11 +5,13 @@ steady, mass conserved to 1e-10, cut-off at the fragmentation limit.
 The default (CI) variant runs 100 species to 5e4 yr; `full` runs the deck as
 published (200 species, 1e5 yr) and writes fig10.png."""
 import os
+import shutil
 import sys
 
 from harness import Checks, run, ROOT
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 full = len(sys.argv) > 3 and sys.argv[3] == "full"
 deck = os.path.join(ROOT, "problems", "coag_steady_state", "coag_steady_state.toml")
 check_py = os.path.join(ROOT, "problems", "coag_steady_state", "check.py")

@@ -10,6 +10,7 @@ usage: disc_hydrostatic_check.py EXE WORKDIR
    the exact vertically isothermal disc at fitted order >= 1.8.
 """
 import os
+import shutil
 import sys
 
 from harness import Checks, fit_order, run
@@ -18,6 +19,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "problems
 import check as hydro  # noqa: E402
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_hydrostatic", "disc_hydrostatic.toml")
 checks = Checks()
 

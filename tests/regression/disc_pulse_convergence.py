@@ -8,6 +8,7 @@ the snapshots and eq. 38; the fitted order must be >= 1.8 (VALIDATION: order 2
 means slope >= p - 0.2), and the error must fall at every refinement.
 """
 import os
+import shutil
 import sys
 import tomllib
 
@@ -17,6 +18,7 @@ from harness import Checks, fit_order, run
 import mote
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 sizes = [int(n) for n in sys.argv[3:]]
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_pulse", "disc_pulse.toml")
 

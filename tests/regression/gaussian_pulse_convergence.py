@@ -7,6 +7,7 @@ Unlimited (Fromm) and MC-limited reconstructions must converge at order >= 1.8
 limiter must not degrade the order); the finest error must stay below 1e-3.
 """
 import os
+import shutil
 import sys
 
 from harness import Checks, fit_order, run
@@ -16,6 +17,7 @@ import check as pulse  # noqa: E402
 import mote  # noqa: E402
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 sizes = [int(n) for n in sys.argv[3:]]
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "gaussian_pulse", "gaussian_pulse.toml")
 checks = Checks()

@@ -9,6 +9,7 @@ usage: viscous_ring_convergence.py EXE WORKDIR N1 N2 N3 ...
 3. Zero-torque boundaries at the explicit limit (gas.cfl = 1): Sigma > 0.
 """
 import os
+import shutil
 import sys
 
 from harness import Checks, fit_order, run
@@ -18,6 +19,7 @@ import check as ring  # noqa: E402
 import mote  # noqa: E402
 
 exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)  # a fresh directory per run: output.dir belongs to one run
 sizes = [int(n) for n in sys.argv[3:]]
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "viscous_ring", "viscous_ring.toml")
 checks = Checks()

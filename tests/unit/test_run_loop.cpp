@@ -1,11 +1,16 @@
 // The generic run loop (include/mote/io/run_loop.hpp) driven by a small
 // Simulation: the forced decay y' = -y + sin(t), forward Euler. Checks output
-// times, restart bit-identity, non-finite detection and signal handling.
+// times, restart bit-identity, non-finite detection, signal handling and the
+// ownership of the output directory (lock, run id, overwrite).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "mote/core/deck.hpp"
 #include "mote/io/output_files.hpp"
@@ -171,10 +176,10 @@ TEST_F(RunLoopTest, TimeStepBelowMinimumStops) {
   EXPECT_EQ(sim.steps, 0);
   Decay explicit_limit;
   testing::internal::CaptureStderr();
-  EXPECT_EQ(run(explicit_limit, {"run.dt_min=0.05"}), core::kExitNonFinite);
+  EXPECT_EQ(run(explicit_limit, {"run.dt_min=0.05", "output.overwrite=true"}), core::kExitNonFinite);
   EXPECT_NE(testing::internal::GetCapturedStderr().find("is below run.dt_min = 0.05"), std::string::npos);
   Decay allowed;
-  EXPECT_EQ(run(allowed, {"run.dt_min=0.01"}), core::kExitFinished);
+  EXPECT_EQ(run(allowed, {"run.dt_min=0.01", "output.overwrite=true"}), core::kExitFinished);
 }
 
 TEST_F(RunLoopTest, UnreadableCheckpointIsBadInput) {
@@ -187,4 +192,82 @@ TEST_F(RunLoopTest, UnreadableCheckpointIsBadInput) {
     EXPECT_NE(std::string(e.what()).find("cannot restart from checkpoint '" + missing + "'"), std::string::npos)
         << e.what();
   }
+}
+
+// Issue 22: an output directory belongs to one run.
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_lock(const std::string& dir, long long pid) {
+  char host[256] = {};
+  gethostname(host, sizeof(host) - 1);
+  std::ofstream(fs::path(dir) / "run.lock") << "host " << host << "\npid " << pid << "\nstarted 2026-01-01T00:00:00Z\n";
+}
+
+/// The message of the core::InputError that `f` throws ("" if it throws none).
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_F(RunLoopTest, RunIdInEveryFileAndLockRemovedAtExit) {
+  Decay sim;
+  ASSERT_EQ(run(sim, {}), core::kExitFinished);
+  const std::string id = read_text(fs::path(dir_) / "run_id").substr(0, 16);
+  EXPECT_EQ(id.size(), 16u);
+  EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
+  io::H5File snapshot(io::numbered_path(dir_, "snapshot", 0, "h5"), io::H5File::Mode::Read, core::Comm::world());
+  EXPECT_EQ(snapshot.read_attribute_string("/", "run_id"), id);
+  io::H5File checkpoint(*io::latest_numbered(dir_, "checkpoint", "h5"), io::H5File::Mode::Read, core::Comm::world());
+  EXPECT_EQ(checkpoint.read_attribute_string("/", "run_id"), id);
+  EXPECT_NE(read_text(fs::path(dir_) / "history.txt").find("\n# run_id " + id + "\n"), std::string::npos);
+}
+
+TEST_F(RunLoopTest, LockedDirectoryIsRefusedAndStaleLockTakenOver) {
+  write_lock(dir_, ::getpid());
+  Decay sim;
+  const std::string why = input_error([&] { run(sim, {}); });
+  EXPECT_NE(why.find("output directory '" + dir_ + "' is in use by another run"), std::string::npos) << why;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 1);  // the lock alone
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  write_lock(dir_, child);
+  EXPECT_EQ(run(sim, {}), core::kExitFinished);
+  EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
+}
+
+TEST_F(RunLoopTest, UsedDirectoryNeedsOverwriteAndRestartNeedsOwnRun) {
+  Decay first;
+  ASSERT_EQ(run(first, {}), core::kExitFinished);
+  const std::string history = read_text(fs::path(dir_) / "history.txt");
+  Decay second;
+  const std::string why = input_error([&] { run(second, {}); });
+  EXPECT_NE(why.find("holds the files of an earlier run"), std::string::npos) << why;
+  EXPECT_EQ(read_text(fs::path(dir_) / "history.txt"), history);
+  const std::string id = read_text(fs::path(dir_) / "run_id");
+  EXPECT_EQ(run(second, {"output.overwrite=true", "output.dir=" + dir_ + "_b"}), core::kExitFinished);
+  fs::copy_file(*io::latest_numbered(dir_ + "_b", "checkpoint", "h5"), dir_ + "/checkpoint_00042.h5");
+  Decay third;
+  const std::string refused = input_error([&] { run(third, {}, dir_ + "/checkpoint_00042.h5"); });
+  EXPECT_NE(refused.find("belongs to run"), std::string::npos) << refused;
+  EXPECT_EQ(read_text(fs::path(dir_) / "history.txt"), history);
+  Decay fourth;
+  EXPECT_EQ(run(fourth, {"output.overwrite=true"}), core::kExitFinished);
+  EXPECT_FALSE(fs::exists(dir_ + "/checkpoint_00042.h5"));  // deleted with the earlier run's files
+  EXPECT_NE(read_text(fs::path(dir_) / "run_id"), id);
+  fs::remove_all(dir_ + "_b");
 }

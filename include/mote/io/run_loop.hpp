@@ -1,6 +1,8 @@
 // The generic time loop shared by every problem: time-step selection clipped
 // to output times, progress lines, snapshots (HDF5 + XDMF), history,
 // checkpoints, restarts, SIGINT/SIGTERM handling and non-finite detection.
+// It holds output.dir for the run's life (run_directory.hpp) and stores the
+// run id in every snapshot, checkpoint and the history header.
 // Its settings are the deck tables [run] and [output].
 #pragma once
 
@@ -12,6 +14,7 @@
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/timers.hpp"
 #include "mote/core/units.hpp"
+#include "mote/io/run_directory.hpp"
 #include "mote/io/simulation.hpp"
 
 namespace mote::io {
@@ -24,6 +27,7 @@ struct RunSettings {
   double progress_interval = 2.0;  // wall seconds between progress lines
   std::string units = "dimensionless";
   std::string output_dir = "output";
+  bool overwrite = false;          // a fresh run may delete an earlier run's files in output_dir
   double snapshot_dt = 0.0;        // 0: first and last snapshot only
   long long checkpoint_every = 0;  // steps; 0: only at the end and on signals
   double checkpoint_wall = 0.0;    // wall seconds; 0: off
@@ -40,7 +44,9 @@ class RunLoop {
           const core::Comm& comm, core::Timers& timers);
 
   /// Runs to run.t_end (or max_steps, a signal, a non-finite value or dt < run.dt_min); returns a core::ExitCode.
-  /// With `restart`, the state and loop counters are first read from that checkpoint.
+  /// With `restart`, the state and loop counters are first read from that checkpoint, which
+  /// must belong to the run of output.dir (core::InputError otherwise, before anything is written).
+  /// output.dir is locked from before the first write until run() returns or throws.
   int run(Simulation& sim, const std::optional<std::string>& restart);
 
  private:
@@ -55,9 +61,10 @@ class RunLoop {
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_checkpoint(Simulation& sim, State& s);
-  /// Restores `path`; any failure is a core::InputError naming the checkpoint (exit 2).
-  void read_checkpoint(Simulation& sim, State& s, const std::string& path);
-  void restore_checkpoint(Simulation& sim, State& s, const std::string& path);
+  /// Restores `path` and returns it with its run id; any failure is a core::InputError naming the checkpoint (exit 2).
+  RestartSource read_checkpoint(Simulation& sim, State& s, const std::string& path);
+  /// Restores `path`; returns its run id ("" if it has none).
+  std::string restore_checkpoint(Simulation& sim, State& s, const std::string& path);
   /// False (after an error message naming the limiting constraint) for dt < run.dt_min or non-finite.
   bool time_step_usable(const Simulation& sim, const State& s, double dt) const;
   void write_run_attributes(H5File& file, const State& s) const;
@@ -70,6 +77,7 @@ class RunLoop {
   units::UnitSystem units_;
   core::Comm comm_;
   core::Timers& timers_;
+  std::string run_id_;  // of the run that owns output.dir, set by run()
 };
 
 }  // namespace mote::io

@@ -1,0 +1,230 @@
+// Output-directory lock and run id (see include/mote/io/run_directory.hpp).
+#include "mote/io/run_directory.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <vector>
+
+#include "mote/core/exit_codes.hpp"
+#include "mote/core/log.hpp"
+#include "mote/io/output_files.hpp"
+
+namespace mote::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Who holds a lock file: "host H", "pid P" and "started T" lines.
+struct LockOwner {
+  std::string host;
+  long long pid = -1;
+  std::string started;
+};
+
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof(name) - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+/// Creates `path` exclusively, holding this process as its owner; false if it already exists.
+bool create_lock(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return false;
+    throw core::IOError("cannot create lock file '" + path + "': " + std::strerror(errno));
+  }
+  const std::string text =
+      "host " + host_name() + "\npid " + std::to_string(::getpid()) + "\nstarted " + now_utc() + "\n";
+  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  const int write_errno = errno;
+  const bool closed = ::close(fd) == 0;
+  if (!written || !closed) {
+    const int saved = written ? errno : write_errno;
+    ::unlink(path.c_str());
+    throw core::IOError("cannot write lock file '" + path + "': " + std::strerror(saved));
+  }
+  return true;
+}
+
+LockOwner read_lock(const std::string& path) {
+  LockOwner owner;
+  std::ifstream in(path);
+  std::string key;
+  while (in >> key) {
+    if (key == "host") in >> owner.host;
+    if (key == "pid") in >> owner.pid;
+    if (key == "started") in >> owner.started;
+  }
+  return owner;
+}
+
+/// A lock whose process is gone: same host, and no process with its pid.
+bool stale(const LockOwner& owner) {
+  return owner.host == host_name() && owner.pid > 0 && ::kill(static_cast<pid_t>(owner.pid), 0) != 0 && errno == ESRCH;
+}
+
+std::string describe(const LockOwner& owner) {
+  if (owner.pid <= 0) return "a run that has not written its host and pid (yet)";
+  return "pid " + std::to_string(owner.pid) + " on host " + owner.host + " (started " + owner.started + ")";
+}
+
+core::InputError in_use(const std::string& dir, const std::string& lock) {
+  return core::InputError("output directory '" + dir + "' is in use by another run: lock file '" + lock +
+                          "' is held by " + describe(read_lock(lock)) +
+                          "; wait for that run to end or choose another output.dir (remove the lock file by hand "
+                          "only if no run uses the directory)");
+}
+
+/// Takes the lock file `lock`, or a stale one with a warning; refuses a live one (core::InputError).
+void acquire_lock(const std::string& dir, const std::string& lock) {
+  if (create_lock(lock)) return;
+  const LockOwner owner = read_lock(lock);
+  if (!stale(owner)) throw in_use(dir, lock);
+  logging::warn("taking over the stale lock file '", lock, "' of ", describe(owner), ": that process no longer exists");
+  if (::unlink(lock.c_str()) != 0 && errno != ENOENT)
+    throw core::IOError("cannot remove stale lock file '" + lock + "': " + std::strerror(errno));
+  if (!create_lock(lock)) throw in_use(dir, lock);
+}
+
+/// The files of a run in `dir`: its run id, history, snapshots, checkpoints and their temporaries.
+std::vector<fs::path> run_files(const std::string& dir) {
+  std::vector<fs::path> found;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(kRunIdFileName, 0) == 0 || name.rfind("history.txt", 0) == 0 || name.rfind("snapshot_", 0) == 0 ||
+        name.rfind("checkpoint_", 0) == 0)
+      found.push_back(entry.path());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+/// Refuses a fresh run into a directory holding an earlier run's files, or deletes them with `overwrite`.
+void clear_for_new_run(const std::string& dir, bool overwrite) {
+  const std::vector<fs::path> files = run_files(dir);
+  if (files.empty()) return;
+  if (!overwrite)
+    throw core::InputError("output directory '" + dir + "' holds the files of an earlier run (" +
+                           std::to_string(files.size()) + " files, e.g. '" + files.front().filename().string() +
+                           "'); continue that run with --restart latest, choose another output.dir, or set "
+                           "output.overwrite = true to delete them");
+  for (const auto& f : files) fs::remove(f);
+  logging::warn("output.overwrite = true: deleted ", files.size(), " files of the earlier run in '", dir, "'");
+}
+
+std::optional<std::string> read_run_id(const std::string& dir) {
+  std::ifstream in(fs::path(dir) / kRunIdFileName);
+  std::string id;
+  if (!(in >> id)) return std::nullopt;
+  return id;
+}
+
+void write_run_id(const std::string& dir, const std::string& id) {
+  const std::string path = (fs::path(dir) / kRunIdFileName).string();
+  {
+    std::ofstream out(temporary_name(path), std::ios::trunc);
+    out << id << "\n";
+    out.flush();
+    if (!out) throw core::IOError("cannot write '" + temporary_name(path) + "': " + std::strerror(errno));
+  }
+  if (std::rename(temporary_name(path).c_str(), path.c_str()) != 0)
+    throw core::IOError("cannot rename '" + temporary_name(path) + "' to '" + path + "': " + std::strerror(errno));
+}
+
+/// The directory's run id for a restart from `restart`: the checkpoint's, which must be the directory's
+/// (a directory without a run id, e.g. one a checkpoint was copied into, adopts it).
+std::string continue_run(const std::string& dir, const RestartSource& restart) {
+  if (restart.run_id.empty())
+    throw core::InputError("checkpoint '" + restart.path +
+                           "' carries no run id (written before mote stored one), so it cannot be matched to the run "
+                           "of output directory '" +
+                           dir + "'");
+  const std::optional<std::string> owner = read_run_id(dir);
+  if (!owner) {
+    write_run_id(dir, restart.run_id);
+  } else if (*owner != restart.run_id) {
+    throw core::InputError("checkpoint '" + restart.path + "' belongs to run " + restart.run_id + ", not to run " +
+                           *owner + " that owns output directory '" + dir + "' (file " + kRunIdFileName +
+                           "); restart from a checkpoint of that run, or give this restart its own output.dir");
+  }
+  return restart.run_id;
+}
+
+std::string format_id(std::uint64_t id) { return logging::format("%016llx", static_cast<unsigned long long>(id)); }
+
+std::string new_run_id() {
+  std::random_device device;
+  return format_id((static_cast<std::uint64_t>(device()) << 32) ^ device());
+}
+
+/// `id` (16 hex digits, on rank 0) on every rank.
+std::string broadcast_id(const std::string& id, const core::Comm& comm) {
+  const std::uint64_t v = comm.is_root() ? std::stoull(id, nullptr, 16) : 0;
+  const auto hi = static_cast<std::uint32_t>(comm.broadcast(static_cast<int>(v >> 32)));
+  const auto lo = static_cast<std::uint32_t>(comm.broadcast(static_cast<int>(v & 0xffffffffu)));
+  return format_id((static_cast<std::uint64_t>(hi) << 32) | lo);
+}
+
+}  // namespace
+
+RunDirectory::RunDirectory(const std::string& dir, bool overwrite, const std::optional<RestartSource>& restart,
+                           const core::Comm& comm)
+    : dir_(dir), lock_path_((fs::path(dir) / kLockFileName).string()) {
+  create_directory(dir, comm);
+  std::exception_ptr failure;
+  int code = core::kExitFinished;
+  if (comm.is_root()) {
+    try {
+      run_id_ = claim(overwrite, restart);
+    } catch (const core::InputError&) {
+      failure = std::current_exception();
+      code = core::kExitBadInput;
+    } catch (const std::exception& e) {
+      failure = std::make_exception_ptr(core::IOError("output directory '" + dir + "': " + e.what()));
+      code = core::kExitIOError;
+    }
+    if (failure && locked_) ::unlink(lock_path_.c_str());
+  }
+  code = comm.broadcast(code);
+  if (failure) std::rethrow_exception(failure);
+  if (code == core::kExitBadInput) throw core::InputError("output directory '" + dir + "' refused on rank 0");
+  if (code != core::kExitFinished) throw core::IOError("output directory '" + dir + "' failed on rank 0");
+  run_id_ = restart ? restart->run_id : broadcast_id(run_id_, comm);
+}
+
+RunDirectory::~RunDirectory() {
+  if (locked_) ::unlink(lock_path_.c_str());
+}
+
+std::string RunDirectory::claim(bool overwrite, const std::optional<RestartSource>& restart) {
+  acquire_lock(dir_, lock_path_);
+  locked_ = true;
+  if (restart) return continue_run(dir_, *restart);
+  clear_for_new_run(dir_, overwrite);
+  const std::string id = new_run_id();
+  write_run_id(dir_, id);
+  return id;
+}
+
+}  // namespace mote::io
