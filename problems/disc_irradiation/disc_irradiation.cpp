@@ -127,9 +127,10 @@ class IrradiatedDisc : public io::Simulation {
   void advance(double, double dt) override {
     try {
       if (steady_ && !relaxed_) {
-        solves_ = fld_.relax_to_steady_state(fields_, state_);
+        relaxation_ = fld_.relax_to_steady_state(fields_, state_);
         relaxed_ = true;
-        logging::info("radiation: steady state after ", solves_, " solves");
+        logging::info("radiation: steady state after ", relaxation_.solves, " solves, ", relaxation_.iterations,
+                      " BiCGStab iterations, ", relaxation_.solve_seconds, " s in the linear solver");
       } else if (!steady_) {
         logging::info("radiation: ", fld_.step(dt, fields_, state_).summary());
       }
@@ -180,7 +181,9 @@ class IrradiatedDisc : public io::Simulation {
   std::vector<io::Diagnostic> diagnostics() const override {
     return {{"absorbed_star", absorbed_power(grid_, fields_)},
             {"open_luminosity", fld_.open_boundary_luminosity(state_)},
-            {"steady_solves", double(solves_)}};
+            {"steady_solves", double(relaxation_.solves)},
+            {"fld_iterations", double(relaxation_.iterations)},
+            {"fld_solve_s", relaxation_.solve_seconds}};
   }
 
   std::optional<io::NonFinite> find_non_finite() const override {
@@ -197,7 +200,7 @@ class IrradiatedDisc : public io::Simulation {
   units::UnitSystem units_;
   double t_end_;
   bool steady_, relaxed_ = false;
-  int solves_ = 0;
+  radiation::FldSolver::Relaxation relaxation_;
   radiation::RadiationDeck rd_;
   mesh::Grid grid_;
   radiation::RadiationConstants constants_;

@@ -409,13 +409,18 @@ double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const
 
 }  // namespace
 
-int FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, double max_change, int max_solves) {
+FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, double max_change,
+                                                       int max_solves) {
   double change = 0.0;
-  for (int solves = 1; solves <= max_solves; ++solves) {
+  Relaxation done;
+  while (done.solves < max_solves) {
     Kokkos::deep_copy(T_previous_, state.T);
-    step(std::numeric_limits<double>::infinity(), fields, state);
+    const auto report = step(std::numeric_limits<double>::infinity(), fields, state);
+    ++done.solves;
+    done.iterations += report.total_iterations();
+    for (const auto& attempt : report.attempts) done.solve_seconds += attempt.seconds;
     change = largest_relative_change(grid_, state.T, T_previous_);
-    if (change <= max_change) return solves;
+    if (change <= max_change) return done;
   }
   throw std::runtime_error("radiation: the steady state did not settle in " + std::to_string(max_solves) +
                            " solves (last relative temperature change " + std::to_string(change) + ")");

@@ -98,11 +98,18 @@ class FldSolver {
   /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
   linalg::SolveReport step(double dt, const FldFields& fields, FldState& state);
 
+  /// What a relaxation to the steady state took (for the run log and history).
+  struct Relaxation {
+    int solves = 0;
+    int iterations = 0;  // BiCGStab iterations over all solves and rungs
+    double solve_seconds = 0.0;
+  };
   /// Steady state with the lagged limiter and Planck factors iterated to
   /// consistency: steps with dt = infinity until no active cell's T changes by
-  /// more than `max_change` (relative). Returns the number of solves; throws
-  /// std::runtime_error after `max_solves` (state holds the last iterate).
-  int relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6, int max_solves = 30);
+  /// more than `max_change` (relative). Throws std::runtime_error after
+  /// `max_solves` (state holds the last iterate).
+  Relaxation relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6,
+                                   int max_solves = 30);
 
   /// Radiative power leaving through the open sides (per radian of azimuth,
   /// summed over bands): the face fluxes of E^b with the diffusion
