@@ -58,36 +58,6 @@ void heat_capacity(const RealView2& rho_g, Real c_V, const RealView2& C) {
       KOKKOS_LAMBDA(int i, int j) { C(i, j) = rho_g(i, j) * c_V; });
 }
 
-/// sum_b E(i, j, b) in every cell.
-RealView2 band_sum(const RealView3& E) {
-  RealView2 sum("irradiation::E_total", E.extent(0), E.extent(1));
-  const int nb = static_cast<int>(E.extent(2));
-  par_for(
-      "irradiation::E_total", 0, static_cast<int>(E.extent(0)), 0, static_cast<int>(E.extent(1)),
-      KOKKOS_LAMBDA(int i, int j) {
-        for (int b = 0; b < nb; ++b) sum(i, j) += E(i, j, b);
-      });
-  return sum;
-}
-
-/// Stellar power taken by the grid per radian of azimuth: sum V (S_* + sum_b S_sca^b).
-double absorbed_power(const mesh::Grid& grid, const radiation::FldFields& fields) {
-  const auto V = grid.V;
-  const auto S = fields.heating;
-  const auto Ss = fields.scattering_source;
-  const int nb = static_cast<int>(Ss.extent(2));
-  double P = 0.0;
-  par_reduce(
-      "irradiation::absorbed", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
-      KOKKOS_LAMBDA(int i, int j, double& sum) {
-        Real s = S(i, j);
-        for (int b = 0; b < nb; ++b) s += Ss(i, j, b);
-        sum += V(i, j) * s;
-      },
-      P);
-  return P;
-}
-
 class IrradiatedDisc : public io::Simulation {
  public:
   IrradiatedDisc(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units)
@@ -145,7 +115,7 @@ class IrradiatedDisc : public io::Simulation {
     out.cell_field("heating", mesh::active_cells(grid_, fields_.heating).data(),
                    {"code energy / volume / time", units_.pressure() / units_.time});
     out.cell_field("rho_gas", mesh::active_cells(grid_, rho_gas_).data(), {"code density", units_.density()});
-    out.cell_field("E_total", mesh::active_cells(grid_, band_sum(state_.E)).data(),
+    out.cell_field("E_total", mesh::active_cells(grid_, radiation::total_energy_density(state_.E)).data(),
                    {"code energy / volume", units_.pressure()});
   }
 
@@ -179,7 +149,7 @@ class IrradiatedDisc : public io::Simulation {
   }
 
   std::vector<io::Diagnostic> diagnostics() const override {
-    return {{"absorbed_star", absorbed_power(grid_, fields_)},
+    return {{"absorbed_star", radiation::absorbed_power(grid_, fields_)},
             {"open_luminosity", fld_.open_boundary_luminosity(state_)},
             {"steady_solves", double(relaxation_.solves)},
             {"fld_iterations", double(relaxation_.iterations)},

@@ -52,6 +52,8 @@ void DiscSimulation::declare(core::DeckSchema& schema) {
   DustSettings::declare(schema);
   DriverSettings::declare(schema);
   coagulation::declare(schema);
+  radiation::declare(schema);
+  TemperatureSettings::declare(schema);
 }
 
 DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units,
@@ -64,6 +66,14 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
   initial_dust(*grid_, gas_->fields(), dust_->W);
   dust_->initialise_from_primitives();
   driver_ = std::make_unique<DiscDriver>(*dust_, *gas_, DriverSettings::from_deck(deck));
+  if (deck.has_table("radiation")) {
+    // RBO24 sec. 6: the temperature on its own adaptive schedule, before coagulation (which reads c_s).
+    temperature_ = std::make_unique<DiscTemperature>(*grid_, *gas_, *dust_, radiation::from_deck(deck, units),
+                                                     TemperatureSettings::from_deck(deck), units);
+    driver_->add({"temperature", Schedule::adaptive(),
+                  [this](double, double elapsed) { temperature_->update(elapsed); },
+                  [this] { return temperature_->next_interval(); }});
+  }
   if (deck.has_table("coagulation")) {
     // RBO24 sec. 6: coagulation on its own adaptive schedule, after the dust step.
     coag_ = std::make_unique<DiscCoagulation>(*grid_, *dust_, coagulation::settings_from_deck(deck), units);
@@ -108,6 +118,7 @@ void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
   const double gm = star.GM;
   out.array("GM", io::Block::whole({1}), &gm,
             {"code length^3 / code time^2", u.length * u.length * u.length / (u.time * u.time)});
+  if (temperature_) temperature_->write_snapshot(out);
 }
 
 void DiscSimulation::save_state(io::H5File& file) const {
@@ -115,12 +126,14 @@ void DiscSimulation::save_state(io::H5File& file) const {
   mesh::write_state(file, "/state/dust_W", *grid_, dust_->W);
   gas_->save_state(file);
   driver_->save_state(file);
+  if (temperature_) temperature_->save_state(file);
   if (coag_) coag_->save_state(file);
 }
 
 void DiscSimulation::load_state(const io::H5File& file) {
   mesh::read_state(file, "/state/dust_Q", *grid_, dust_->Q);
   mesh::read_state(file, "/state/dust_W", *grid_, dust_->W);
+  if (temperature_) temperature_->load_state(file);  // hands T to the gas before its structure is rebuilt
   gas_->load_state(file);
   dust_->set_gas(gas_->fields());
   driver_->load_state(file);
@@ -145,6 +158,8 @@ std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
   for (int s = 0; s < dust_->species(); ++s) d.push_back({"dust_mass_" + std::to_string(s), dust_->mass(s)});
   d.push_back({"dust_rho_min", min_dust_density()});
   d.push_back({"gas_mass", gas_->mass()});
+  if (temperature_)
+    for (const auto& t : temperature_->diagnostics()) d.push_back(t);
   return d;
 }
 

@@ -179,7 +179,22 @@ void compute_planck_factors(const mesh::Grid& grid, const RealView1& edges, cons
       });
 }
 
-/// D = c lambda / rho kappa_R at active cells (eq. 41-43), from E^n with its
+/// E^b = f^b(T) 4 sigma T^4 / c in every active cell.
+void equilibrium_field(const mesh::Grid& grid, const RealView1& edges, Real c, Real sigma, const RealView2& T,
+                       const RealView3& E) {
+  const int nb = static_cast<int>(E.extent(2));
+  par_for(
+      "radiation::equilibrium_field", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const Real t = T(i, j), B = 4.0 * sigma * t * t * t * t;
+        for (int b = 0; b < nb; ++b) {
+          const Real lo = b == 0 ? 0.0 : edges(b), hi = b == nb - 1 ? 0.0 : edges(b + 1);
+          E(i, j, b) = band_fraction(lo, hi, t) * B / c;
+        }
+      });
+}
+
+/// D = min(c lambda / rho kappa_R, c r) at active cells (eq. 41-43), from E^n with its
 /// gradient from the four neighbours; ghost cells copy the nearest active cell.
 void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, int b, Real c,
                                    const RealView3& extinction, const RealView3& E, const RealView1& E_ext,
@@ -200,7 +215,12 @@ void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, i
         const Real gR = (d1 * e2Z - d2 * e1Z) / det, gZ = (e1R * d2 - e2R * d1) / det;
         const Real chi = extinction(i, j, b);
         const Real lambda = kley_limiter(limiter_ratio(math::sqrt(gR * gR + gZ * gZ), chi, E(i, j, b)));
-        D(i, j) = c * lambda / chi;
+        // Where E is nearly uniform (R -> 0 in a cell however thin) lambda -> 1/3 and c / 3 chi is
+        // unbounded; c r, r the distance to the star, bounds it: the flux D |grad E| stays below
+        // c E for every gradient scale E / |grad E| longer than r, so the limit is unchanged,
+        // while rows of nearly empty cells no longer carry coefficients ~1e22 times their neighbours'.
+        const Real r = math::sqrt(Rc(i) * Rc(i) + Zc(i, j) * Zc(i, j));
+        D(i, j) = math::fmin(c * lambda / chi, c * r);
       });
   const int i0 = grid.i_begin(), i1 = grid.i_end() - 1, j0 = grid.j_begin(), j1 = grid.j_end() - 1;
   par_for(
@@ -317,6 +337,10 @@ void initial_guess(const mesh::Grid& grid, const CellMap& map, Real c, Real sigm
 
 }  // namespace
 
+void FldSolver::equilibrate_radiation(FldState& state) const {
+  equilibrium_field(grid_, band_edges_, constants_.c, constants_.sigma, state.T, state.E);
+}
+
 void FldSolver::update_diffusion(const FldFields& fields, const FldState& state) {
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
   for (int b = 0; b < nb_; ++b) {
@@ -395,19 +419,25 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   return report;
 }
 
-namespace {
-
-/// max over active cells of |T / T_previous - 1|.
-double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_previous) {
+double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_reference) {
   double worst = 0.0;
   par_reduce(
       "radiation::fld_temperature_change", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
-      KOKKOS_LAMBDA(int i, int j, double& m) { m = math::fmax(m, math::fabs(T(i, j) / T_previous(i, j) - 1.0)); },
+      KOKKOS_LAMBDA(int i, int j, double& m) { m = math::fmax(m, math::fabs(T(i, j) / T_reference(i, j) - 1.0)); },
       Kokkos::Max<double>(worst));
   return worst;
 }
 
-}  // namespace
+RealView2 total_energy_density(const RealView3& E) {
+  RealView2 sum("radiation::E_total", E.extent(0), E.extent(1));
+  const int nb = static_cast<int>(E.extent(2));
+  par_for(
+      "radiation::E_total", 0, static_cast<int>(E.extent(0)), 0, static_cast<int>(E.extent(1)),
+      KOKKOS_LAMBDA(int i, int j) {
+        for (int b = 0; b < nb; ++b) sum(i, j) += E(i, j, b);
+      });
+  return sum;
+}
 
 FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, double max_change,
                                                        int max_solves) {

@@ -96,4 +96,21 @@ void StellarIrradiation::heat(const RealView3& extinction, const RealView3& abso
       });
 }
 
+double absorbed_power(const mesh::Grid& grid, const FldFields& fields) {
+  const auto V = grid.V;
+  const auto S = fields.heating;
+  const auto Ss = fields.scattering_source;
+  const int nb = static_cast<int>(Ss.extent(2));
+  double P = 0.0;
+  par_reduce(
+      "radiation::absorbed_power", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j, double& sum) {
+        Real s = S(i, j);
+        for (int b = 0; b < nb; ++b) s += Ss(i, j, b);
+        sum += V(i, j) * s;
+      },
+      P);
+  return P;
+}
+
 }  // namespace mote::radiation

@@ -3,7 +3,9 @@
 // 26-37), the multi-species dust of [dust] (DustDynamics, eq. 4-19) and the
 // operator-splitting driver of [driver] (DiscDriver), and coagulation on the
 // dust species when the deck has a [coagulation] table (DiscCoagulation, RBO24
-// sec. 5, adaptive schedule). Problems supply only the
+// sec. 5, adaptive schedule), and the temperature from the radiation solver
+// when it has a [radiation] table (DiscTemperature, RBO24 sec. 4, adaptive
+// schedule, registered before coagulation). Problems supply only the
 // initial dust (e.g. well_mixed) and may register further sub-solvers with
 // driver().add(...) or gas hooks with gas().add_source(...).
 //
@@ -11,9 +13,10 @@
 // dust_rho_<s>, dust_vR_<s>, dust_vphi_<s>, dust_vZ_<s>, dust_ts_<s> (Epstein
 // stopping time, eq. 14), the cell field v_K = (-R g_R)^1/2 (circular
 // speed of a test particle at (R, Z)) and /data/dust_sizes (cm), /data/GM.
-// Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping and
-// the coagulation's proposed sub-steps.
-// History: dust_mass_<s>, dust_rho_min, gas_mass.
+// With [radiation] also rad_E (radiation energy density, all bands).
+// Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping,
+// T and E_R^b of the temperature solver and the coagulation's proposed sub-steps.
+// History: dust_mass_<s>, dust_rho_min, gas_mass (and DiscTemperature::diagnostics).
 #pragma once
 
 #include <functional>
@@ -25,6 +28,7 @@
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_coagulation.hpp"
 #include "mote/disc/disc_driver.hpp"
+#include "mote/disc/disc_temperature.hpp"
 #include "mote/disc/dust_dynamics.hpp"
 #include "mote/disc/gas_disc.hpp"
 #include "mote/io/simulation.hpp"
@@ -52,6 +56,8 @@ class DiscSimulation : public io::Simulation {
   DustDynamics& dust() { return *dust_; }
   const DustDynamics& dust() const { return *dust_; }
   DiscDriver& driver() { return *driver_; }
+  /// The temperature solver, or nullptr when the deck has no [radiation] table.
+  const DiscTemperature* temperature() const { return temperature_.get(); }
   const units::UnitSystem& units() const { return units_; }
 
   double max_dt() override { return driver_->max_dt(); }
@@ -72,7 +78,8 @@ class DiscSimulation : public io::Simulation {
   std::unique_ptr<GasDisc> gas_;
   std::unique_ptr<DustDynamics> dust_;
   std::unique_ptr<DiscDriver> driver_;
-  std::unique_ptr<DiscCoagulation> coag_;  // when the deck has [coagulation]
+  std::unique_ptr<DiscTemperature> temperature_;  // when the deck has [radiation]
+  std::unique_ptr<DiscCoagulation> coag_;         // when the deck has [coagulation]
 };
 
 }  // namespace mote::disc

@@ -2,7 +2,10 @@
 // sec. 4.1: the implicit system of eq. 48 (for B = 4 sigma T^4 in each cell)
 // and eq. 49 (for E_R^b in each band and cell), with
 //   F^b = -(c lambda^b / rho kappa_R^b) grad E_R^b          (eq. 41)
-// and the Kley (1989) limiter lambda^b (eq. 42-43). The diffusion coefficient
+// and the Kley (1989) limiter lambda^b (eq. 42-43), the coefficient capped at
+// c r (r the distance to the star; only cells of nearly uniform E reach the
+// cap, where lambda -> 1/3 and c / 3 rho kappa_R is unbounded however thin the
+// cell, and the flux there stays below c E). The diffusion coefficient
 // and the Planck factors f^b are evaluated at t^n (time-lagged, as RBO24); the
 // divergence of F^b is the 9-point matrix of app. A, built from the mesh's
 // Wu et al. (2012) face coefficients (mesh::diffusion_coefficients, the same
@@ -93,6 +96,11 @@ class FldSolver {
   FldFields make_fields() const;
   FldState make_state() const;
 
+  /// E^b = f^b(T) 4 sigma T^4 / c at the active cells: the field in equilibrium
+  /// with T, a start whose limiter sees the gradients of T (from E = 0 every
+  /// cell is in the diffusion limit, D = c / 3 rho kappa_R, however thin).
+  void equilibrate_radiation(FldState& state) const;
+
   /// One implicit step of eq. 48-49 over dt (infinity: the steady state).
   /// Active cells of `state` are updated; on a failed solve (or a B <= 0)
   /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
@@ -144,5 +152,10 @@ class FldSolver {
   linalg::Vector rhs_, x_;
   RealView2 T_previous_;
 };
+
+/// max over the active cells of |T / T_reference - 1|.
+double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_reference);
+/// sum_b E(i, j, b) in every cell (a new view).
+RealView2 total_energy_density(const RealView3& E);
 
 }  // namespace mote::radiation

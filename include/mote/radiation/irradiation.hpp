@@ -54,4 +54,8 @@ class StellarIrradiation {
   RealView3 tau_;         // (nr_total, nt_total, nB): optical depth to the cell's inner edge
 };
 
+/// Stellar power the grid takes per radian of azimuth: the sum over the active
+/// cells of V (S_* + sum_b S_sca^b) from the fields StellarIrradiation::heat filled.
+double absorbed_power(const mesh::Grid& grid, const FldFields& fields);
+
 }  // namespace mote::radiation

@@ -1,0 +1,231 @@
+// The temperature solver coupled to the disc driver (RBO24 sec. 4 and 6,
+// DiscTemperature): in an optically thin disc of grey grains the driver's
+// temperature is the D2 limit T_star (R_star / 2 r)^1/2; the gas sound speed,
+// hydrostatic density and the dust stopping times follow it (checked against
+// the Epstein law worked out here in cgs); with viscous heating (eq. 44) the
+// power leaving the open sides is the absorbed starlight plus the viscous
+// power; the update schedule follows the predicted change; a failed solve
+// keeps the temperature; a checkpoint restart continues bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "mote/core/comm.hpp"
+#include "mote/core/deck.hpp"
+#include "mote/core/exit_codes.hpp"
+#include "mote/core/units.hpp"
+#include "mote/disc/disc_simulation.hpp"
+#include "mote/disc/gas_structure.hpp"
+#include "mote/io/h5_file.hpp"
+
+namespace {
+
+using namespace mote;
+
+// Sigma = 1e-4 g cm^-2 at 1 au: the radial optical depth of the dust is ~1e-5.
+const char* kDeck = R"(
+[grid]
+nr = 20
+R_in = 1.0
+R_out = 30.0
+r_spacing = "log"
+ntheta = 10
+theta_min = 0.0
+theta_max = 0.3
+[boundaries]
+inner = "closed"
+outer = "closed"
+lower = "closed"
+upper = "closed"
+[gas]
+R_ref = 1.0
+T_ref = 150.0
+T_index = 0.5
+alpha = 1e-3
+Sigma0 = 1.12e-11
+[dust]
+sizes = [1e-4]
+[radiation]
+bands = 4
+stellar_bins = 40
+T_ext = 3.0
+tolerance = 1e-8
+star_radius = 2.0
+star_T_eff = 4000.0
+opacity = "grey"
+kappa_abs = 1.0
+[temperature]
+viscous_heating = false
+)";
+
+const core::DeckSchema& schema() {
+  static const core::DeckSchema s = [] {
+    core::DeckSchema d;
+    disc::DiscSimulation::declare(d);
+    return d;
+  }();
+  return s;
+}
+
+struct DiscRun {
+  explicit DiscRun(const std::vector<std::string>& overrides = {})
+      : deck(core::Deck::parse(kDeck, "test_disc_temperature", schema(), overrides)),
+        units(units::unit_system_by_name("au_msun")),
+        sim(deck, core::Comm::world(), units, disc::DiscSimulation::well_mixed({0.01}, 1e-60)) {}
+  void steps(int n) {
+    for (int k = 0; k < n; ++k) {
+      const double dt = sim.max_dt();
+      sim.advance(time, dt);
+      time += dt;
+    }
+  }
+  core::Deck deck;
+  units::UnitSystem units;
+  disc::DiscSimulation sim;
+  double time = 0.0;
+};
+
+template <class V>
+auto on_host(const V& v) {
+  return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+}
+
+TEST(DiscTemperature, ThinDiscReachesTheD2LimitAndTheGasAndDustFollowIt) {
+  DiscRun run;
+  run.steps(1);
+  ASSERT_NE(run.sim.temperature(), nullptr);
+  EXPECT_EQ(run.sim.temperature()->updates(), 1);  // on the first step
+  const auto& grid = run.sim.grid();
+  const auto& gas = run.sim.gas().fields();
+  const auto T = on_host(gas.T);
+  const auto cs2 = on_host(gas.cs2);
+  const auto rho = on_host(gas.rho);
+  const auto ts = on_host(run.sim.dust().stopping_times());
+  const auto Rc = on_host(grid.Rc);
+  const auto Zc = on_host(grid.Zc);
+  const double R_star = 2.0 * units::cgs::R_sun, T_star = 4000.0;
+  const double mu_mH = 2.34 * units::cgs::m_H, rho_m = 1.6, a = 1e-4;
+  double worst_T = 0.0, worst_ts = 0.0;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const double r = std::hypot(Rc(i), Zc(i, j)) * units::cgs::au;
+      worst_T = std::fmax(worst_T, std::fabs(T(i, j) / (T_star * std::sqrt(R_star / (2.0 * r))) - 1.0));
+      // Epstein in cgs from the solver's T: t_s = rho_m a / (rho_g sqrt(8 / pi) c_s).
+      const double cs = std::sqrt(units::cgs::k_B * T(i, j) / mu_mH);
+      const double expected = rho_m * a / (rho(i, j) * run.units.density() * std::sqrt(8.0 / M_PI) * cs);
+      worst_ts = std::fmax(worst_ts, std::fabs(ts(i, j, 0) * run.units.time / expected - 1.0));
+    }
+  EXPECT_LE(worst_T, 1e-2) << "D2 in the coupled disc";
+  EXPECT_LE(worst_ts, 1e-12) << "stopping times from the solver's temperature";
+  std::printf("coupled D2: max |T / T_thin - 1| = %.2e; stopping times %.2e\n", worst_T, worst_ts);
+
+  // The hydrostatic density is rebuilt from the new sound speed (eq. 33-37).
+  RealView2 rho_expected("rho_expected", grid.nr_total(), grid.nt_total());
+  disc::gas_hydrostatic_density(grid, gas.gravity, gas.column_fraction, run.sim.gas().config().rho_floor,
+                                run.sim.gas().midplane_index(), gas.cs2, gas.Sigma, rho_expected);
+  const auto rho_e = on_host(rho_expected);
+  const double T_to_cs2 = 1.0 / run.sim.gas().config().cs2_to_T;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      ASSERT_EQ(rho(i, j), rho_e(i, j)) << i << ", " << j;
+      ASSERT_NEAR(cs2(i, j) / (T(i, j) * T_to_cs2), 1.0, 1e-14) << i << ", " << j;
+    }
+}
+
+TEST(DiscTemperature, UpdatesFollowThePredictedChange) {
+  DiscRun run;
+  run.steps(1);
+  const auto* temperature = run.sim.temperature();
+  const double first_interval = temperature->next_interval();
+  run.steps(11);
+  // After the steady state the changes are at the solver's tolerance, so the
+  // interval grows by max_growth per update: far fewer updates than steps.
+  EXPECT_GE(temperature->updates(), 2);
+  EXPECT_LE(temperature->updates(), 4);
+  EXPECT_GT(temperature->next_interval(), first_interval);
+  std::printf("updates in 12 steps: %lld; next interval %.3e (after the first: %.3e)\n", temperature->updates(),
+              temperature->next_interval(), first_interval);
+}
+
+TEST(DiscTemperature, RadiatedPowerIsStarlightPlusViscousHeating) {
+  // A cooler star and alpha = 0.1: eq. 44 is a large part of the heating.
+  DiscRun run({"temperature.viscous_heating=true", "gas.alpha=0.1", "radiation.star_T_eff=1500.0",
+               "radiation.star_radius=1.0"});
+  const auto& grid = run.sim.grid();
+  const auto& gas = run.sim.gas().fields();
+  const auto rho = on_host(gas.rho);
+  const auto nu = on_host(gas.nu);
+  const auto V = on_host(grid.V);
+  const auto Rc = on_host(grid.Rc);
+  double viscous = 0.0;  // (9/4) rho nu Omega_K^2 V over the active cells, from the gas the first update sees
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j)
+      viscous += 2.25 * rho(i, j) * nu(i, j) * gas.gravity.GM / std::pow(Rc(i), 3) * V(i, j);
+  run.steps(1);
+  double absorbed = 0.0, radiated = 0.0;
+  for (const auto& d : run.sim.diagnostics()) {
+    if (d.name == "absorbed_star") absorbed = d.value;
+    if (d.name == "open_luminosity") radiated = d.value;
+  }
+  EXPECT_GE(viscous / radiated, 0.1) << "the viscous share must be large enough to be seen";
+  const double balance = radiated / (absorbed + viscous) - 1.0;
+  EXPECT_LE(std::fabs(balance), 1e-7);  // measured 8.5e-10 at radiation.tolerance = 1e-8
+  std::printf("viscous share %.3f, balance %.2e\n", viscous / radiated, balance);
+}
+
+TEST(DiscTemperature, FailedSolveKeepsTheTemperature) {
+  DiscRun run({"radiation.max_iterations=1", "radiation.ilu_fill=-1", "radiation.max_fill_level=0"});
+  const auto before = on_host(run.sim.gas().fields().T);
+  EXPECT_THROW(run.steps(1), core::NumericalError);
+  EXPECT_EQ(run.sim.temperature()->updates(), 0);
+  const auto after = on_host(run.sim.gas().fields().T);
+  const auto T_solver = on_host(run.sim.temperature()->state().T);
+  for (size_t i = 0; i < before.extent(0); ++i)
+    for (size_t j = 0; j < before.extent(1); ++j) {
+      ASSERT_EQ(after(i, j), before(i, j));
+      ASSERT_EQ(T_solver(i, j), before(i, j));
+    }
+}
+
+TEST(DiscTemperature, CheckpointRestartIsBitIdentical) {
+  const std::string path = ::testing::TempDir() + "disc_temperature_state.h5";
+  DiscRun first;
+  first.steps(3);
+  {
+    io::H5File file(path, io::H5File::Mode::Create, core::Comm::world());
+    first.sim.save_state(file);
+  }
+  const double t_checkpoint = first.time;
+  first.steps(12);  // crosses at least one further temperature update
+  DiscRun second;
+  second.sim.load_state(io::H5File(path, io::H5File::Mode::Read, core::Comm::world()));
+  second.time = t_checkpoint;
+  second.steps(12);
+  std::remove(path.c_str());
+  EXPECT_GT(first.sim.temperature()->updates(), 2);
+  EXPECT_EQ(second.sim.temperature()->updates(), first.sim.temperature()->updates());
+  EXPECT_EQ(second.time, first.time);
+  const auto check = [](const auto& a, const auto& b, const char* what) {
+    const auto ha = on_host(a), hb = on_host(b);
+    ASSERT_EQ(ha.size(), hb.size());
+    for (size_t k = 0; k < ha.size(); ++k) ASSERT_EQ(ha.data()[k], hb.data()[k]) << what << " element " << k;
+  };
+  check(first.sim.gas().fields().T, second.sim.gas().fields().T, "T");
+  check(first.sim.gas().fields().rho, second.sim.gas().fields().rho, "rho_g");
+  check(first.sim.temperature()->state().E, second.sim.temperature()->state().E, "E");
+  check(first.sim.dust().Q, second.sim.dust().Q, "dust Q");
+}
+
+TEST(DiscTemperature, DeckErrors) {
+  EXPECT_THROW(core::Deck::parse(std::string(kDeck).substr(0, std::string(kDeck).find("[radiation]")) +
+                                     "[temperature]\nupdate_tolerance = 1e-2\n",
+                                 "no_radiation", schema()),
+               core::DeckError);
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.update_tolerance=0"}), core::DeckError);
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.gamma=1.0"}), core::DeckError);
+}
+
+}  // namespace
