@@ -6,8 +6,10 @@
 // scalar (a read-back, the same synchronisation as a reduction) is counted
 // apart: a neighbour rebuild needs a few to size its lists, a step without one
 // needs none. Bulk copies and allocations must be zero. Cases: SPH one-fluid
-// dust with rebuilds on every step (dustyshock) and without (dustywave), and
-// the disc grid with dust, evolving gas and coagulation on the driver. The
+// dust with rebuilds on every step (dustyshock) and without (dustywave), the
+// disc grid with dust, evolving gas and coagulation on the driver, and the
+// disc with the temperature solver (whose BiCGStab reads its convergence
+// measures back once per iteration). The
 // callbacks fire in every backend, so Serial runs catch what a GPU would pay.
 #include <gtest/gtest.h>
 
@@ -45,7 +47,13 @@ class TrafficCounter {
   TrafficCounter(const TrafficCounter&) = delete;
   TrafficCounter& operator=(const TrafficCounter&) = delete;
 
+  struct Copy {
+    std::string src, dst;
+    std::uint64_t bytes;
+  };
   int deep_copies() const { return state().copies; }
+  const std::vector<Copy>& copy_list() const { return state().copy_list; }
+  const std::map<std::string, int>& allocation_labels() const { return state().allocation_labels; }
   int scalar_reads() const { return state().scalar_reads; }
   int allocations() const { return state().allocations; }
   std::string report() const {
@@ -61,6 +69,7 @@ class TrafficCounter {
   struct State {
     int copies = 0, scalar_reads = 0, allocations = 0;
     std::map<std::string, int> copy_labels, allocation_labels;  // label -> count
+    std::vector<Copy> copy_list;
   };
   static State& state() {
     static State s;
@@ -76,6 +85,7 @@ class TrafficCounter {
       return;
     }
     ++state().copies;
+    state().copy_list.push_back({src_name, dst_name, bytes});
     keep(state().copy_labels, std::string(src_space.name) + ":" + src_name + " -> " + dst_space.name + ":" + dst_name +
                                   " (" + std::to_string(bytes) + " B)");
   }
@@ -216,4 +226,53 @@ TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {
     EXPECT_EQ(counter.allocations(), 0) << counter.report();
   }
   EXPECT_GT(sim->driver().calls(0), calls0) << "the steps must include coagulation calls";
+}
+
+TEST(DeviceTraffic, DiscTemperatureUpdatesReadBackOnlyTheSolverConvergenceMeasures) {
+  // A temperature update needs, per BiCGStab iteration, one 40-byte copy of
+  // the convergence measures to the host (the iteration is driven from the
+  // host), and two more per solve (initial and true residual). Every other copy is between two device Views of equal
+  // size (the solver's restore point x0, r = b, the previous T and E, T into the gas, Kokkos Kernels' level pointers):
+  // device-internal on a GPU, at most 7 per update. The only allocations are Kokkos Kernels' own work arrays inside the
+  // spiluk numeric phase ("iw", "Host level pointers").
+  static const core::DeckSchema schema = [] {
+    core::DeckSchema d;
+    disc::DiscSimulation::declare(d);
+    return d;
+  }();
+  const std::string radiation =
+      "[radiation]\nbands = 4\nstellar_bins = 20\ntolerance = 1e-8\n"
+      "[temperature]\nmax_growth = 1.5\n";
+  const auto deck =
+      core::Deck::parse(std::string(kDiscDeck) + radiation, "test_device_traffic", schema, {"dust.sizes=[1e-4, 1e-3]"});
+  disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+                           disc::DiscSimulation::well_mixed({1e-2, 1e-2}, 1e-40));
+  const auto fld_iterations = [&sim] {
+    for (const auto& d : sim.diagnostics())
+      if (d.name == "fld_iterations") return d.value;
+    return -1.0;
+  };
+  double t = 0;
+  take_steps(sim, 5, t);
+  const long long updates0 = sim.temperature()->updates();
+  const double iterations0 = fld_iterations();
+  TrafficCounter counter;
+  take_steps(sim, 30, t);
+  const long long updates = sim.temperature()->updates() - updates0;
+  const int iterations = static_cast<int>(fld_iterations() - iterations0);
+  ASSERT_GT(updates, 0) << "the steps must include temperature updates";
+  int read_backs = 0, internal = 0;
+  for (const auto& c : counter.copy_list()) {
+    if (c.bytes <= 40)
+      ++read_backs;
+    else
+      ++internal;
+  }
+  std::printf("%lld updates, %d iterations: %d read-backs of <= 40 B, %d device-internal copies; %s\n", updates,
+              iterations, read_backs, internal, counter.report().c_str());
+  // One per iteration, plus the initial residual and the true-residual confirmation of each solve.
+  EXPECT_LE(read_backs, iterations + 2 * updates) << counter.report();
+  EXPECT_LE(internal, 7 * updates) << counter.report();
+  for (const auto& [label, count] : counter.allocation_labels())
+    EXPECT_TRUE(label == "Host:iw" || label == "Host:Host level pointers") << label << " x " << count;
 }
