@@ -347,9 +347,12 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
           vphi = math::min(math::max(q[kAngMom] * inv, lo[1]), hi[1]) / R;
           vZ = math::min(math::max(q[kMomZ] * inv, lo[2]), hi[2]) + dt * aZ * rs * inv;
         } else {
-          vR = w_source(i, j, s, kVR) + dt * aR;
-          vphi = w_source(i, j, s, kVphi);
-          vZ = w_source(i, j, s, kVZ) + dt * aZ;
+          // An empty cell (at the floor) carries no dust and takes the gas velocity: kept
+          // ballistic, its velocity would grow by dt a every step at a fixed place, without
+          // bound (decoupled floor dust in a cavity reached 28 v_K and collapsed the step).
+          vR = vgR(i, j);
+          vphi = vgphi(i, j);
+          vZ = vgZ(i, j);
         }
         if (drag) {
           const Real ts = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
