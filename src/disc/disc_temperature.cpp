@@ -184,6 +184,8 @@ void DiscTemperature::solve(double elapsed) {
                   " BiCGStab iterations, ", relaxed.solve_seconds, " s in the linear solver");
   } else {
     const auto report = fld_.step(elapsed, fields_, state_);
+    if (report.attempts.size() > 1)  // the configured preconditioner failed; a fallback rung solved it
+      logging::warn("temperature update ", updates_ + 1, ": ", report.summary());
     iterations_ += report.total_iterations();
     for (const auto& attempt : report.attempts) solve_seconds_ += attempt.seconds;
   }
