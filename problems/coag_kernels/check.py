@@ -66,7 +66,7 @@ def main():
     m0 = first.data["density"][0].sum()
     merr = max(abs(s.data["density"][0].sum() / m0 - 1) for s in snaps)
     bpd = 1.0 / np.log10(last.data["mass"][1] / last.data["mass"][0])
-    split = tomllib.loads(last.deck)["coagulation"].get("product_split", "two-bin")
+    split = tomllib.loads(last.deck)["coagulation"]["product_split"]  # the resolved deck names the default too
     print(f"coag_kernels: kernel = {kernel}, split = {split}, T = {T:g}, bins per decade = {bpd:.2f}, L1_rel = {l1:.6e}, mass error = {merr:.3e}")
     if args.plot:
         import matplotlib

@@ -3,7 +3,7 @@
 
     check.py RUN_DIR [--plot FILE.png] [--orbits 10 20 30 40] [--front-tol 0.05]
              [--mass-tol 1e-5] [--unfloored-tol 1e-12] [--table2]
-             [--references]
+             [--l2-bounds E1 ... EN] [--references]
 
 References, computed here from the resolved deck (independent of the C++ code):
   * gas: the static isothermal column in hydrostatic equilibrium with eq. 53 of
@@ -43,6 +43,9 @@ Metrics:
     smears; and against HPL18's own scheme of app. A2 (Crank-Nicolson,
     centred differences, 1002 points on [-3H, 3H], a step of 1 / Omega0),
     the reference of Table 2, with SPLASH's convention for particles beyond it.
+  * --l2-bounds E1 ... EN: the same per-species L2 density error (against the
+    implicit 1D solution) must not exceed the N given bounds, one per species
+    (the CI variant of A6 asserts its own recorded errors with a margin).
   * with dust.write_velocities: per species, L2 / max of the dust velocity
     v_dj against eq. A5 over the particles in |z| <= 3H (HPL18 Table 2,
     velocity column; printed); for one species, dust_velocity must equal the
@@ -308,6 +311,8 @@ def main():
     ap.add_argument("--projected-tol", type=float, default=None,
                     help="bound on the dust mass the S projection removed, relative (A5: 1e-5 over 50 orbits)")
     ap.add_argument("--table2", action="store_true")
+    ap.add_argument("--l2-bounds", type=float, nargs="+", metavar="E",
+                    help="per-species bounds on the L2 density error against the implicit 1D solution")
     ap.add_argument("--references", action="store_true")
     args = ap.parse_args()
     files = mote.list_snapshots(args.run_dir)
@@ -363,9 +368,17 @@ def main():
         refs.append(rj)
     print(f"t = {snap.time / col.orbit:.2f} orbits, L2 density error per species / max(reference): "
           + " ".join(f"{e:.2e}" for e in l2))
+    if args.l2_bounds:
+        over = [str(j + 1) for j, (e, c) in enumerate(zip(l2, args.l2_bounds)) if e > c]
+        check(len(l2) == len(args.l2_bounds) and not over,
+              f"A6: L2 density error of each of the {len(l2)} species within its bound ("
+              + " ".join(f"{e:.2e}<={c:.2e}" for e, c in zip(l2, args.l2_bounds)) + ")"
+              + (f"; over for species {', '.join(over)}" if over else "")
+              + ("" if len(l2) == len(args.l2_bounds) else f"; {len(args.l2_bounds)} bounds given"))
     if args.table2:
         check(len(l2) == len(TABLE2) and all(e <= c for e, c in zip(l2, TABLE2)),
-              "A6: every species within HPL18 Table 2 (density column), against the implicit 1D solution")
+              "A6: every species within HPL18 Table 2 (density column), against the implicit 1D solution ("
+              + " ".join(f"{e:.2e}<={c:.2e}" for e, c in zip(l2, TABLE2)) + ")")
         l2c, split = [], []
         for j in range(len(col.eps)):
             zj, rj = col.characteristics(j, snap.time)

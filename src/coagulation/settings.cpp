@@ -44,12 +44,12 @@ void declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .doc("Mass excavated from the target in units of the impactor mass (RBO24 eq. 68).");
   s.string("coagulation.product_split")
-      .default_value(std::string("two-bin"))
-      .one_of({"two-bin", "quadratic"})
+      .default_value(std::string("quadratic"))
+      .one_of({"quadratic", "two-bin"})
       .doc(
-          "Sharing of products and remnants between the centres around them: two-bin mass fractions (RBO24 eq. 63-65) "
-          "or "
-          "the number-conserving split with a limited second-moment correction (docs/coagulation.md).");
+          "Sharing of products and remnants between the centres around them: the number-conserving split with a "
+          "limited second-moment correction (default; VALIDATION E1/E2 at 7 bins per mass decade, "
+          "docs/coagulation.md) or the two-bin mass fractions of RBO24 eq. 63-65 (as cuDisc).");
   s.real("coagulation.rel_tol")
       .default_value(1e-2)
       .greater_than(0.0)

@@ -224,9 +224,11 @@ TEST(CoagulationRates, QuadraticSplitKeepsEmptyBinsNonNegative) {
 
 TEST(CoagulationRates, ConstantKernelSinglePair) {
   // Only bin k populated: loss m_k n_k^2 K (eq. 54 with K_kk halved in the gain),
-  // gain of 2 m_k n_k^2 K / 2 split between the centres around 2 m_k (eq. 63).
+  // gain of 2 m_k n_k^2 K / 2 split between the centres around 2 m_k (eq. 63,
+  // the two-bin split; the default quadratic split is tested above).
   const auto grid = coag::MassGrid::from_masses(1.0, 1e3, 31);  // ratio 10^0.1
   coag::CoagulationSettings s;
+  s.product_split = "two-bin";
   s.kernel = "constant";
   s.kernel_coefficient = 2.0;
   coag::Coagulation solver(grid, s, 1);
