@@ -23,27 +23,34 @@ namespace {
 constexpr const char* kErrorLogName = "hdf5_errors.log";
 constexpr const char* kChecksumAttribute = "checksum";
 
-/// Appends one entry of HDF5's error stack to the text in `data`.
+/// HDF5's error stack: its text (outermost call first) and the innermost description.
+struct ErrorStack {
+  std::string text;
+  std::string innermost;
+};
+
 herr_t append_error(unsigned n, const H5E_error2_t* err, void* data) {
-  auto& text = *static_cast<std::string*>(data);
-  text += logging::format("  #%03u: %s line %u in %s(): %s\n", n, err->file_name, err->line, err->func_name,
-                          err->desc ? err->desc : "");
+  auto& stack = *static_cast<ErrorStack*>(data);
+  stack.innermost = err->desc ? err->desc : "";
+  stack.text += logging::format("  #%03u: %s line %u in %s(): %s\n", n, err->file_name, err->line, err->func_name,
+                                stack.innermost.c_str());
   return 0;
 }
 
-/// HDF5's current error stack as text (innermost call last); clears it.
-std::string take_error_stack() {
-  std::string text;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, append_error, &text);
+/// HDF5's current error stack; clears it.
+ErrorStack take_error_stack() {
+  ErrorStack stack;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, append_error, &stack);
   H5Eclear2(H5E_DEFAULT);
-  return text;
+  return stack;
 }
 
-/// The system's error message recorded in an HDF5 error stack ("File too large"), empty if none.
-std::string system_error_in(const std::string& stack) {
+/// Why the innermost HDF5 call failed: the system's error message it recorded ("File too
+/// large"), else its own description.
+std::string reason_of(const ErrorStack& stack) {
   static const std::regex message(R"(error message = '([^']*)')");
   std::smatch m;
-  return std::regex_search(stack, m, message) ? m[1].str() : std::string();
+  return std::regex_search(stack.text, m, message) ? m[1].str() : stack.innermost;
 }
 
 /// Appends `stack` to hdf5_errors.log beside `path` (best effort: the disk may be full); returns the log's path.
@@ -57,11 +64,9 @@ std::string log_error_stack(const std::string& path, const std::string& what, co
 
 /// Throws the core::IOError of a failed HDF5 call `what` on file `path`.
 [[noreturn]] void fail(const std::string& what, const std::string& path) {
-  const int saved_errno = errno;
-  const std::string stack = take_error_stack();
-  std::string reason = system_error_in(stack);
-  if (reason.empty() && saved_errno != 0) reason = std::strerror(saved_errno);
-  const std::string log = log_error_stack(path, what, stack);
+  const ErrorStack stack = take_error_stack();
+  const std::string reason = reason_of(stack);
+  const std::string log = log_error_stack(path, what, stack.text);
   throw core::IOError("HDF5 could not " + what + " in '" + path + "'" + (reason.empty() ? "" : ": " + reason) +
                       " (HDF5 error stack in " + log + ")");
 }
@@ -133,6 +138,7 @@ void write_bytes(const std::string& path, const char* data, size_t size) {
   while (done < size) {
     const ssize_t n = ::write(fd, data + done, size - done);
     if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = EIO;  // no progress and no error: not expected from a regular file
     if (n <= 0) break;
     done += static_cast<size_t>(n);
   }
@@ -168,7 +174,6 @@ H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm)
 #endif
   in_memory_ = mode == Mode::Create && comm_.size() == 1;
   if (in_memory_) check(H5Pset_fapl_core(fapl, kCoreIncrement, 0), "set the in-memory driver", path);
-  errno = 0;
   if (mode == Mode::Create)
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   else
@@ -201,7 +206,6 @@ void H5File::close() {
       throw;
     }
   }
-  errno = 0;
   check(H5Fclose(file), "flush and close the file", path_);
 }
 
@@ -275,7 +279,6 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
     H5Sselect_none(memspace);
   }
   Handle dxpl(transfer_plist(), H5Pclose);
-  errno = 0;
   check(H5Dwrite(dset, type, memspace, filespace, dxpl, data), "write dataset " + name, path_);
   if (is_state_dataset(name)) write_checksum(name, block, H5Tget_size(type), writes ? data : nullptr);
 }

@@ -112,12 +112,6 @@ int report(const std::exception& error, const core::Comm& comm) {
   return core::exit_code_of(error);
 }
 
-/// The deck stored in a checkpoint, for restarts without a deck argument.
-std::string deck_from_checkpoint(const std::string& path, const core::Comm& comm) {
-  H5File file(path, H5File::Mode::Read, comm);
-  return file.read_attribute_string("/", "deck");
-}
-
 /// `text` as a TOML basic string.
 std::string toml_string(const std::string& text) {
   std::string quoted = "\"";
@@ -136,7 +130,7 @@ core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, con
                        const core::Comm& comm) {
   std::string text;
   try {
-    text = deck_from_checkpoint(checkpoint, comm);
+    text = deck_stored_in(checkpoint, comm);
   } catch (const std::exception& e) {
     throw core::DeckError("cannot read the deck stored in checkpoint '" + checkpoint + "': " + e.what());
   }
@@ -187,7 +181,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     if (cl.restart) {
       restart = *cl.restart == "latest" ? latest_sound_checkpoint(deck->string("output.dir"), comm)
                                         : sound_checkpoint(*cl.restart, comm);
-      check_restart_deck(*restart, *deck, schema, cl.force, comm);
+      check_restart_deck(*restart, *deck, schema, problem.name, cl.force, comm);
     }
   } catch (const core::InputError& e) {
     return report(e, comm);

@@ -41,15 +41,16 @@ std::string latest_sound_checkpoint(const std::string& dir, const core::Comm& co
                          dir + "' is sound (see the warnings above)");
 }
 
+std::string deck_stored_in(const std::string& checkpoint, const core::Comm& comm) {
+  const H5File file(checkpoint, H5File::Mode::Read, comm);
+  return file.read_attribute_string("/", "deck");
+}
+
 namespace {
 
-core::Deck stored_deck_of(const std::string& checkpoint, const core::DeckSchema& schema, const core::Comm& comm) {
-  std::string text;
-  {
-    const H5File file(checkpoint, H5File::Mode::Read, comm);
-    text = file.read_attribute_string("/", "deck");
-  }
-  return core::Deck::parse(text, "deck stored in " + checkpoint, schema);
+std::string problem_stored_in(const std::string& checkpoint, const core::Comm& comm) {
+  const H5File file(checkpoint, H5File::Mode::Read, comm);
+  return file.read_attribute_string("/", "problem");
 }
 
 std::string describe(const core::KeyChange& c) {
@@ -59,10 +60,14 @@ std::string describe(const core::KeyChange& c) {
 }  // namespace
 
 void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, const core::DeckSchema& schema,
-                        bool force, const core::Comm& comm) {
+                        const std::string& problem, bool force, const core::Comm& comm) {
+  if (const std::string stored = problem_stored_in(checkpoint, comm); stored != problem)
+    throw core::InputError("checkpoint '" + checkpoint + "' belongs to problem '" + stored + "', not '" + problem +
+                           "'");
   std::vector<core::KeyChange> changes;
   try {
-    changes = stored_deck_of(checkpoint, schema, comm).changes_to(deck);
+    changes =
+        core::Deck::parse(deck_stored_in(checkpoint, comm), "deck stored in " + checkpoint, schema).changes_to(deck);
   } catch (const std::exception& e) {
     if (!force)
       throw core::DeckError("cannot compare the deck with the one stored in checkpoint '" + checkpoint +

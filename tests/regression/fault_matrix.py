@@ -16,7 +16,7 @@ and checksums of the files that must not change:
   * a small tmpfs filling up (only where this process may mount one, else skipped);
   * truncated, bit-flipped and NaN-holding checkpoints: --restart FILE refuses them (exit 2,
     naming the defect), --restart latest skips them with a warning naming each and restarts
-    from the previous sound one;
+    from the previous sound one; one of another problem is refused naming both problems;
   * a restart whose deck changes physics or geometry (transport.vx, grid.x_max) or the
     resolution (grid.nx) is refused (exit 2) naming the key and both values; restart-mutable
     keys (run.t_end) may change; --force accepts a change and logs it.
@@ -240,6 +240,12 @@ def damaged_checkpoints():
         case(f"restart latest, newest {kind}", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
                                                 "run.max_steps=6"], 0,
              [f"skipping checkpoint '{newest}': {expected[kind]}", f"restarted from {previous} at step 4"])
+    foreign = os.path.join(work, "foreign.h5")
+    shutil.copy(previous, foreign)
+    with h5py.File(foreign, "r+") as f:
+        f.attrs["problem"] = np.bytes_("disc_pulse")
+    case("restart FILE of another problem", [exe, "--restart", foreign, deck, *common, f"output.dir={d}"], BAD_INPUT,
+         [f"checkpoint '{foreign}' belongs to problem 'disc_pulse', not 'gaussian_pulse'"], unchanged=d)
     for c in ckpts:
         shutil.copy(bad["bitflip"], os.path.join(d, c))
     case("restart latest, all damaged", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], BAD_INPUT,

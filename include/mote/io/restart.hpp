@@ -25,10 +25,14 @@ std::string sound_checkpoint(const std::string& path, const core::Comm& comm);
 /// core::InputError if there is none.
 std::string latest_sound_checkpoint(const std::string& dir, const core::Comm& comm);
 
-/// Compares `deck` with the deck stored in `checkpoint` (parsed with the same schema): changes
-/// of restart-mutable keys are logged; any other change is a core::DeckError naming each key
-/// with both values, or with `force` a warning per change.
+/// The resolved deck (TOML text) stored in `checkpoint`.
+std::string deck_stored_in(const std::string& checkpoint, const core::Comm& comm);
+
+/// Refuses a checkpoint of another problem (core::InputError), then compares `deck` with the
+/// deck stored in `checkpoint` (parsed with the same schema): changes of restart-mutable keys
+/// are logged; any other change is a core::DeckError naming each key with both values, or with
+/// `force` a warning per change.
 void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, const core::DeckSchema& schema,
-                        bool force, const core::Comm& comm);
+                        const std::string& problem, bool force, const core::Comm& comm);
 
 }  // namespace mote::io
