@@ -326,4 +326,21 @@ std::string Deck::to_toml() const {
   return os.str();
 }
 
+std::vector<KeyChange> Deck::changes_to(const Deck& other) const {
+  const auto text = [](const Deck& d, const std::string& dotted) {
+    const auto it = d.values_.find(dotted);
+    return it == d.values_.end() ? std::string("(absent)") : value_to_toml(it->second);
+  };
+  std::vector<KeyChange> changes;
+  for (const auto& spec : schema_->keys()) {
+    const auto mine = values_.find(spec.dotted()), theirs = other.values_.find(spec.dotted());
+    const bool same = mine == values_.end() ? theirs == other.values_.end()
+                                            : theirs != other.values_.end() && mine->second == theirs->second;
+    if (!same)
+      changes.push_back(
+          {spec.dotted(), text(*this, spec.dotted()), text(other, spec.dotted()), spec.is_restart_mutable()});
+  }
+  return changes;
+}
+
 }  // namespace mote::core

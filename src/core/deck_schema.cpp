@@ -110,6 +110,10 @@ KeySpec& KeySpec::int64() {
   int64_ = true;
   return *this;
 }
+KeySpec& KeySpec::restart_mutable() {
+  restart_mutable_ = true;
+  return *this;
+}
 
 std::string KeySpec::type_violation(const Value& value) const {
   auto finite = [](double x) { return std::isfinite(x); };
@@ -242,6 +246,7 @@ std::string DeckSchema::help_text() const {
       os << (k.required() ? "  required" : "  default " + value_to_toml(*k.default_opt()));
       if (!k.unit_text().empty()) os << "  [" << k.unit_text() << "]";
       if (!k.range_text().empty()) os << "  " << k.range_text();
+      if (k.is_restart_mutable()) os << "  (may change on restart)";
       os << "\n      " << k.doc_text() << "\n";
     }
   }
@@ -258,7 +263,8 @@ std::string DeckSchema::markdown() const {
       if (k.table() != t.name) continue;
       os << "| `" << k.key() << "` | " << type_name(k.type()) << " | "
          << (k.required() ? "**required**" : "`" + value_to_toml(*k.default_opt()) + "`") << " | " << k.unit_text()
-         << " | " << k.range_text() << " | " << k.doc_text() << " |\n";
+         << " | " << k.range_text() << " | " << k.doc_text()
+         << (k.is_restart_mutable() ? " May change on restart." : "") << " |\n";
     }
     os << "\n";
   }

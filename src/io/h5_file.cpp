@@ -1,20 +1,82 @@
 // RAII HDF5 file with collective block I/O (see include/mote/io/h5_file.hpp).
 #include "mote/io/h5_file.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <regex>
 #include <stdexcept>
 
 #include "mote/core/exit_codes.hpp"
+#include "mote/core/log.hpp"
 
 namespace mote::io {
 
 namespace {
 
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw core::IOError("HDF5 error: " + what);
+constexpr const char* kErrorLogName = "hdf5_errors.log";
+constexpr const char* kChecksumAttribute = "checksum";
+
+/// HDF5's error stack: its text (outermost call first) and the innermost description.
+struct ErrorStack {
+  std::string text;
+  std::string innermost;
+};
+
+herr_t append_error(unsigned n, const H5E_error2_t* err, void* data) {
+  auto& stack = *static_cast<ErrorStack*>(data);
+  stack.innermost = err->desc ? err->desc : "";
+  stack.text += logging::format("  #%03u: %s line %u in %s(): %s\n", n, err->file_name, err->line, err->func_name,
+                                stack.innermost.c_str());
+  return 0;
 }
 
-hid_t check_id(hid_t id, const std::string& what) {
-  if (id < 0) throw core::IOError("HDF5 error: " + what);
+/// HDF5's current error stack; clears it.
+ErrorStack take_error_stack() {
+  ErrorStack stack;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, append_error, &stack);
+  H5Eclear2(H5E_DEFAULT);
+  return stack;
+}
+
+/// Why the innermost HDF5 call failed: the system's error message it recorded ("File too
+/// large"), else its own description.
+std::string reason_of(const ErrorStack& stack) {
+  static const std::regex message(R"(error message = '([^']*)')");
+  std::smatch m;
+  return std::regex_search(stack.text, m, message) ? m[1].str() : stack.innermost;
+}
+
+/// Appends `stack` to hdf5_errors.log beside `path` (best effort: the disk may be full); returns the log's path.
+std::string log_error_stack(const std::string& path, const std::string& what, const std::string& stack) {
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  const std::string log = (dir.empty() ? std::filesystem::path(kErrorLogName) : dir / kErrorLogName).string();
+  std::ofstream out(log, std::ios::app);
+  out << "HDF5 error in '" << path << "': " << what << "\n" << stack;
+  return log;
+}
+
+/// Throws the core::IOError of a failed HDF5 call `what` on file `path`.
+[[noreturn]] void fail(const std::string& what, const std::string& path) {
+  const ErrorStack stack = take_error_stack();
+  const std::string reason = reason_of(stack);
+  const std::string log = log_error_stack(path, what, stack.text);
+  throw core::IOError("HDF5 could not " + what + " in '" + path + "'" + (reason.empty() ? "" : ": " + reason) +
+                      " (HDF5 error stack in " + log + ")");
+}
+
+void check(herr_t status, const std::string& what, const std::string& path) {
+  if (status < 0) fail(what, path);
+}
+
+hid_t check_id(hid_t id, const std::string& what, const std::string& path) {
+  if (id < 0) fail(what, path);
   return id;
 }
 
@@ -34,6 +96,63 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
+/// splitmix64's finaliser: a well-mixed 64-bit hash of x.
+std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// Sum over the elements of `block` (row-major in memory) of mix(mix(global index) ^ element bits).
+std::uint64_t block_checksum(const Block& block, size_t element_size, const void* data) {
+  const size_t rank = block.count.size();
+  size_t n = 1;
+  for (const auto c : block.count) n *= c;
+  std::vector<hsize_t> index(rank, 0);
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::uint64_t sum = 0;
+  for (size_t k = 0; k < n; ++k) {
+    std::uint64_t global = 0, bits = 0;
+    for (size_t d = 0; d < rank; ++d) global = global * block.global_dims[d] + block.offset[d] + index[d];
+    std::memcpy(&bits, bytes + k * element_size, element_size);
+    sum += mix(mix(global) ^ bits);
+    for (size_t d = rank; d-- > 0;) {
+      if (++index[d] < block.count[d]) break;
+      index[d] = 0;
+    }
+  }
+  return sum;
+}
+
+/// HDF5's in-memory driver grows its image in steps of this many bytes.
+constexpr size_t kCoreIncrement = size_t(1) << 20;
+
+/// Writes `size` bytes to `path` (created or truncated) with checked POSIX calls; on failure
+/// removes the partial file and throws a core::IOError with the system error.
+void write_bytes(const std::string& path, const char* data, size_t size) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw core::IOError("cannot create '" + path + "': " + std::strerror(errno));
+  size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::write(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = EIO;  // no progress and no error: not expected from a regular file
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
+  }
+  const int write_errno = errno;
+  const bool closed = ::close(fd) == 0;
+  if (done < size || !closed) {
+    const int saved = done < size ? write_errno : errno;
+    ::unlink(path.c_str());
+    throw core::IOError("cannot write '" + path + "': " + std::strerror(saved));
+  }
+}
+
+bool is_state_dataset(const std::string& name) { return name.rfind("/state/", 0) == 0; }
+
 }  // namespace
 
 Block Block::whole(std::vector<hsize_t> dims) {
@@ -44,24 +163,59 @@ Block Block::whole(std::vector<hsize_t> dims) {
   return b;
 }
 
-H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm) : path_(path), comm_(comm) {
-  Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm)
+    : path_(path), comm_(comm), exceptions_at_open_(std::uncaught_exceptions()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported by fail(), their stack logged
+  Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a file access list", path), H5Pclose);
 #if defined(MOTE_HAVE_MPI) && defined(MOTE_HDF5_PARALLEL)
-  if (comm_.size() > 1) check(H5Pset_fapl_mpio(fapl, comm_.raw(), MPI_INFO_NULL), "H5Pset_fapl_mpio");
+  if (comm_.size() > 1) check(H5Pset_fapl_mpio(fapl, comm_.raw(), MPI_INFO_NULL), "set the MPI-IO driver", path);
 #else
   if (comm_.size() > 1) throw std::logic_error("H5File on several ranks needs MPI and a parallel HDF5");
 #endif
+  in_memory_ = mode == Mode::Create && comm_.size() == 1;
+  if (in_memory_) check(H5Pset_fapl_core(fapl, kCoreIncrement, 0), "set the in-memory driver", path);
   if (mode == Mode::Create)
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   else
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
-  if (file_ < 0)
-    throw core::IOError("cannot " + std::string(mode == Mode::Create ? "create" : "open") + " HDF5 file '" + path +
-                        "'");
+  if (file_ < 0) fail(mode == Mode::Create ? "create the file" : "open the file", path);
 }
 
 H5File::~H5File() {
-  if (file_ >= 0) H5Fclose(file_);
+  if (file_ < 0) return;
+  if (in_memory_ && std::uncaught_exceptions() == exceptions_at_open_) {
+    try {
+      write_image_of(file_);
+    } catch (const std::exception& e) {
+      logging::error(e.what());
+    }
+  }
+  H5Fclose(file_);
+  H5Eclear2(H5E_DEFAULT);
+}
+
+void H5File::close() {
+  if (file_ < 0) return;
+  const hid_t file = file_;
+  file_ = -1;
+  if (in_memory_) {
+    try {
+      write_image_of(file);
+    } catch (...) {
+      H5Fclose(file);
+      throw;
+    }
+  }
+  check(H5Fclose(file), "flush and close the file", path_);
+}
+
+void H5File::write_image_of(hid_t file) const {
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush the file image", path_);
+  const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+  if (size < 0) fail("build the file image", path_);
+  std::vector<char> image(static_cast<size_t>(size));
+  if (H5Fget_file_image(file, image.data(), image.size()) != size) fail("copy the file image", path_);
+  write_bytes(path_, image.data(), image.size());
 }
 
 void H5File::create_group(const std::string& path) {
@@ -72,7 +226,7 @@ void H5File::create_group(const std::string& path) {
     partial = path.substr(0, end == std::string::npos ? path.size() : end);
     if (!partial.empty() && partial != "/" && !exists(partial)) {
       Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                        "create group " + partial),
+                        "create group " + partial, path_),
                H5Gclose);
     }
     if (end == std::string::npos) break;
@@ -94,9 +248,9 @@ bool H5File::exists(const std::string& path) const {
 }
 
 hid_t H5File::transfer_plist() const {
-  hid_t dxpl = check_id(H5Pcreate(H5P_DATASET_XFER), "H5Pcreate xfer");
+  hid_t dxpl = check_id(H5Pcreate(H5P_DATASET_XFER), "create a transfer list", path_);
 #if defined(MOTE_HAVE_MPI) && defined(MOTE_HDF5_PARALLEL)
-  if (comm_.size() > 1) check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  if (comm_.size() > 1) check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "set collective transfers", path_);
 #endif
   return dxpl;
 }
@@ -105,48 +259,106 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
   const int rank = static_cast<int>(block.global_dims.size());
   const auto slash = name.rfind('/');
   if (slash != std::string::npos && slash > 0) create_group(name.substr(0, slash));
-  Handle filespace(check_id(H5Screate_simple(rank, block.global_dims.data(), nullptr), "dataspace " + name), H5Sclose);
+  Handle filespace(
+      check_id(H5Screate_simple(rank, block.global_dims.data(), nullptr), "create the dataspace of " + name, path_),
+      H5Sclose);
   Handle dset(check_id(H5Dcreate2(file_, name.c_str(), type, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                       "create dataset " + name),
+                       "create dataset " + name, path_),
               H5Dclose);
   // A "whole" block is written by rank 0 alone; the others select nothing.
   const bool whole = block.count == block.global_dims;
   const bool writes = !whole || comm_.is_root();
-  Handle memspace(check_id(H5Screate_simple(rank, block.count.data(), nullptr), "memspace " + name), H5Sclose);
+  Handle memspace(
+      check_id(H5Screate_simple(rank, block.count.data(), nullptr), "create the memory space of " + name, path_),
+      H5Sclose);
   if (writes) {
     check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
-          "select " + name);
+          "select a block of " + name, path_);
   } else {
     H5Sselect_none(filespace);
     H5Sselect_none(memspace);
   }
   Handle dxpl(transfer_plist(), H5Pclose);
-  check(H5Dwrite(dset, type, memspace, filespace, dxpl, data), "write " + name);
+  check(H5Dwrite(dset, type, memspace, filespace, dxpl, data), "write dataset " + name, path_);
+  if (is_state_dataset(name)) write_checksum(name, block, H5Tget_size(type), writes ? data : nullptr);
+}
+
+void H5File::write_checksum(const std::string& name, const Block& block, size_t element_size, const void* data) {
+  const std::uint64_t mine = data ? block_checksum(block, element_size, data) : 0;
+  // Sums of the ranks' parts wrap around modulo 2^64 like the unsigned sum itself.
+  const auto total = static_cast<std::uint64_t>(comm_.sum(static_cast<long long>(mine)));
+  write_attribute(name, kChecksumAttribute, static_cast<std::int64_t>(total));
 }
 
 void H5File::read_impl(const std::string& name, const Block& block, hid_t type, void* data) const {
   if (!exists(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
-  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name), H5Dclose);
-  Handle filespace(check_id(H5Dget_space(dset), "space " + name), H5Sclose);
+  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
+  Handle filespace(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(filespace);
   std::vector<hsize_t> dims(static_cast<size_t>(rank));
   H5Sget_simple_extent_dims(filespace, dims.data(), nullptr);
   if (dims != block.global_dims)
     throw std::runtime_error("dataset '" + name + "' in '" + path_ + "' has a different shape than expected");
   check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
-        "select " + name);
-  Handle memspace(check_id(H5Screate_simple(rank, block.count.data(), nullptr), "memspace " + name), H5Sclose);
+        "select a block of " + name, path_);
+  Handle memspace(
+      check_id(H5Screate_simple(rank, block.count.data(), nullptr), "create the memory space of " + name, path_),
+      H5Sclose);
   Handle dxpl(transfer_plist(), H5Pclose);
-  check(H5Dread(dset, type, memspace, filespace, dxpl, data), "read " + name);
+  check(H5Dread(dset, type, memspace, filespace, dxpl, data), "read dataset " + name, path_);
 }
 
 std::vector<hsize_t> H5File::dims(const std::string& name) const {
   if (!exists(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
-  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name), H5Dclose);
-  Handle space(check_id(H5Dget_space(dset), "space " + name), H5Sclose);
+  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
+  Handle space(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
   std::vector<hsize_t> d(static_cast<size_t>(H5Sget_simple_extent_ndims(space)));
   H5Sget_simple_extent_dims(space, d.data(), nullptr);
   return d;
+}
+
+std::vector<std::string> H5File::datasets(const std::string& group) const {
+  std::vector<std::string> names;
+  if (!exists(group)) return names;
+  Handle g(check_id(H5Oopen(file_, group.c_str(), H5P_DEFAULT), "open group " + group, path_), H5Oclose);
+  // Generic lambda: the link-info type differs between HDF5 1.10 and 1.12+.
+  const auto collect = [](hid_t parent, const char* name, const auto*, void* data) -> herr_t {
+    const hid_t obj = H5Oopen(parent, name, H5P_DEFAULT);
+    if (obj < 0) return -1;
+    if (H5Iget_type(obj) == H5I_DATASET) static_cast<std::vector<std::string>*>(data)->push_back(name);
+    H5Oclose(obj);
+    return 0;
+  };
+  check(H5Lvisit(g, H5_INDEX_NAME, H5_ITER_INC, collect, &names), "list the datasets of " + group, path_);
+  for (auto& n : names) n = group + "/" + n;
+  return names;
+}
+
+std::string H5File::check_state_dataset(const std::string& name) const {
+  if (!has_attribute(name, kChecksumAttribute)) return "dataset " + name + " has no checksum";
+  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
+  Handle type(check_id(H5Dget_type(dset), "read the type of " + name, path_), H5Tclose);
+  const bool real = H5Tget_class(type) == H5T_FLOAT;
+  const size_t size = H5Tget_size(type);
+  const Block block = Block::whole(dims(name));
+  size_t n = 1;
+  for (const auto c : block.count) n *= c;
+  std::vector<std::uint64_t> buffer(n);  // 8 bytes per element suffice for every stored type
+  if (real)
+    read(name, block, reinterpret_cast<double*>(buffer.data()));
+  else if (size == 4)
+    read(name, block, reinterpret_cast<std::int32_t*>(buffer.data()));
+  else
+    read(name, block, reinterpret_cast<std::int64_t*>(buffer.data()));
+  const size_t element_size = real ? sizeof(double) : (size == 4 ? 4 : 8);
+  if (real)
+    for (size_t k = 0; k < n; ++k)
+      if (!std::isfinite(reinterpret_cast<const double*>(buffer.data())[k]))
+        return logging::cat("dataset ", name, " holds a non-finite value at element ", k);
+  const auto stored = static_cast<std::uint64_t>(read_attribute_int(name, kChecksumAttribute));
+  if (stored != block_checksum(block, element_size, buffer.data()))
+    return "dataset " + name + " does not match its checksum (the file was changed or damaged)";
+  return {};
 }
 
 void H5File::write(const std::string& n, const Block& b, const double* d) { write_impl(n, b, H5T_NATIVE_DOUBLE, d); }
@@ -162,33 +374,33 @@ void H5File::read(const std::string& n, const Block& b, std::int32_t* d) const {
 
 namespace {
 
-void write_attr(hid_t file, const std::string& object, const std::string& name, hid_t type, hid_t space,
-                const void* data) {
-  Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object), H5Oclose);
-  if (H5Aexists(obj, name.c_str()) > 0) check(H5Adelete(obj, name.c_str()), "delete attribute " + name);
+void write_attr(hid_t file, const std::string& path, const std::string& object, const std::string& name, hid_t type,
+                hid_t space, const void* data) {
+  Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object, path), H5Oclose);
+  if (H5Aexists(obj, name.c_str()) > 0) check(H5Adelete(obj, name.c_str()), "delete attribute " + name, path);
   Handle attr(
-      check_id(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name),
+      check_id(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name, path),
       H5Aclose);
-  check(H5Awrite(attr, type, data), "write attribute " + name);
+  check(H5Awrite(attr, type, data), "write attribute " + name, path);
 }
 
 Handle open_attr(hid_t file, const std::string& path, const std::string& object, const std::string& name) {
-  Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object + " in " + path), H5Oclose);
+  Handle obj(check_id(H5Oopen(file, object.c_str(), H5P_DEFAULT), "open object " + object, path), H5Oclose);
   if (H5Aexists(obj, name.c_str()) <= 0)
     throw std::runtime_error("'" + path + "' has no attribute " + object + "@" + name);
-  return Handle(check_id(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name), H5Aclose);
+  return Handle(check_id(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name, path), H5Aclose);
 }
 
 }  // namespace
 
 void H5File::write_attribute(const std::string& object, const std::string& name, double value) {
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  write_attr(file_, object, name, H5T_NATIVE_DOUBLE, space, &value);
+  write_attr(file_, path_, object, name, H5T_NATIVE_DOUBLE, space, &value);
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, std::int64_t value) {
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  write_attr(file_, object, name, H5T_NATIVE_INT64, space, &value);
+  write_attr(file_, path_, object, name, H5T_NATIVE_INT64, space, &value);
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, const std::string& value) {
@@ -198,20 +410,20 @@ void H5File::write_attribute(const std::string& object, const std::string& name,
   H5Tset_cset(type, H5T_CSET_UTF8);
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   const std::string padded = value.empty() ? std::string(1, '\0') : value;
-  write_attr(file_, object, name, type, space, padded.data());
+  write_attr(file_, path_, object, name, type, space, padded.data());
 }
 
 double H5File::read_attribute_real(const std::string& object, const std::string& name) const {
   Handle attr = open_attr(file_, path_, object, name);
   double v = 0;
-  check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+  check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name, path_);
   return v;
 }
 
 std::int64_t H5File::read_attribute_int(const std::string& object, const std::string& name) const {
   Handle attr = open_attr(file_, path_, object, name);
   std::int64_t v = 0;
-  check(H5Aread(attr, H5T_NATIVE_INT64, &v), "read attribute " + name);
+  check(H5Aread(attr, H5T_NATIVE_INT64, &v), "read attribute " + name, path_);
   return v;
 }
 
@@ -220,14 +432,14 @@ std::string H5File::read_attribute_string(const std::string& object, const std::
   Handle type(H5Aget_type(attr), H5Tclose);
   const size_t size = H5Tget_size(type);
   std::string v(size, '\0');
-  check(H5Aread(attr, type, v.data()), "read attribute " + name);
+  check(H5Aread(attr, type, v.data()), "read attribute " + name, path_);
   while (!v.empty() && v.back() == '\0') v.pop_back();
   return v;
 }
 
 bool H5File::has_attribute(const std::string& object, const std::string& name) const {
   if (!exists(object)) return false;
-  Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object + " in " + path_), H5Oclose);
+  Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object, path_), H5Oclose);
   return H5Aexists(obj, name.c_str()) > 0;
 }
 

@@ -1,7 +1,10 @@
 // Output directory and atomic file commits (see include/mote/io/output_files.hpp).
 #include "mote/io/output_files.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <regex>
 #include <stdexcept>
@@ -38,6 +41,38 @@ void commit_file(const std::string& final_path, const core::Comm& comm) {
   if (!ok) throw core::IOError("cannot rename '" + temporary_name(final_path) + "' to '" + final_path + "'");
 }
 
+PendingFile::PendingFile(std::string final_path, const core::Comm& comm)
+    : final_(std::move(final_path)), temporary_(temporary_name(final_)), comm_(comm) {}
+
+PendingFile::~PendingFile() {
+  if (!committed_ && comm_.is_root()) std::remove(temporary_.c_str());
+}
+
+void PendingFile::commit() {
+  commit_file(final_, comm_);
+  committed_ = true;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const std::string tmp = temporary_name(path);
+  std::FILE* out = std::fopen(tmp.c_str(), "w");
+  if (!out) throw core::IOError("cannot create '" + tmp + "': " + std::strerror(errno));
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() && std::fflush(out) == 0;
+  const int write_errno = errno;
+  const bool closed = std::fclose(out) == 0;
+  if (!written || !closed) {
+    const int saved = written ? errno : write_errno;
+    std::remove(tmp.c_str());
+    throw core::IOError("cannot write '" + tmp + "': " + std::strerror(saved));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    std::remove(tmp.c_str());
+    throw core::IOError("cannot rename '" + tmp + "' to '" + path + "': " + std::strerror(saved));
+  }
+}
+
 std::string numbered_path(const std::string& dir, const std::string& stem, long long index, const std::string& ext) {
   return (fs::path(dir) / logging::format("%s_%05lld.%s", stem.c_str(), index, ext.c_str())).string();
 }
@@ -49,20 +84,23 @@ long long index_of(const std::string& path) {
   return std::regex_search(name, m, pattern) ? std::stoll(m[1].str()) : -1;
 }
 
-std::optional<std::string> latest_numbered(const std::string& dir, const std::string& stem, const std::string& ext) {
-  std::optional<std::string> best;
-  long long best_index = -1;
+std::vector<std::string> numbered_files(const std::string& dir, const std::string& stem, const std::string& ext) {
+  std::vector<std::pair<long long, std::string>> found;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind(stem + "_", 0) != 0 || entry.path().extension() != "." + ext) continue;
-    const long long i = index_of(name);
-    if (i > best_index) {
-      best_index = i;
-      best = entry.path().string();
-    }
+    if (const long long i = index_of(name); i >= 0) found.emplace_back(i, entry.path().string());
   }
-  return best;
+  std::sort(found.rbegin(), found.rend());
+  std::vector<std::string> paths;
+  for (auto& f : found) paths.push_back(std::move(f.second));
+  return paths;
+}
+
+std::optional<std::string> latest_numbered(const std::string& dir, const std::string& stem, const std::string& ext) {
+  const auto files = numbered_files(dir, stem, ext);
+  return files.empty() ? std::nullopt : std::optional<std::string>(files.front());
 }
 
 }  // namespace mote::io

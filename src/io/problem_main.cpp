@@ -11,7 +11,7 @@
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/runtime.hpp"
-#include "mote/io/output_files.hpp"
+#include "mote/io/restart.hpp"
 #include "mote/io/run_loop.hpp"
 
 namespace mote::io {
@@ -23,6 +23,7 @@ struct CommandLine {
   std::vector<std::string> overrides;
   std::optional<std::string> restart;
   bool check_only = false;
+  bool force = false;  // accept a restart whose deck changes keys that may not change
 };
 
 /// True for an argument that reads as a deck key ("grid.nx") rather than a deck file.
@@ -39,6 +40,8 @@ CommandLine parse_command_line(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--check") {
       cl.check_only = true;
+    } else if (arg == "--force") {
+      cl.force = true;
     } else if (arg == "--restart") {
       if (i + 1 >= argc) throw core::DeckError("--restart needs a checkpoint file or 'latest'");
       cl.restart = argv[++i];
@@ -61,13 +64,15 @@ CommandLine parse_command_line(int argc, char** argv) {
 
 std::string usage(const ProblemDefinition& p) {
   return p.name + ": " + p.summary + "\n\nusage: " + p.name +
-         " [deck.toml] [table.key=value ...] [--restart FILE|latest] [--check]\n"
+         " [deck.toml] [table.key=value ...] [--restart FILE|latest [--force]] [--check]\n"
          "       " +
          p.name +
          " --help | --version | --deck-reference\n\n"
          "  --restart FILE    continue from a checkpoint; without a deck, the deck stored in it is used,\n"
          "                    writing beside the checkpoint, without its run.max_steps\n"
-         "  --restart latest  continue from the newest checkpoint in output.dir (of the directory's own run)\n"
+         "  --restart latest  continue from the newest sound checkpoint in output.dir (of the directory's own\n"
+         "                    run), skipping any that fails its checksum or holds non-finite values\n"
+         "  --force           restart even though the deck changes keys that may not change on restart\n"
          "  --check           validate the deck (every rule the run applies), print it resolved, and exit\n"
          "  --version         print the version of mote and exit\n"
          "  --kokkos-help     Kokkos's own options\n"
@@ -107,12 +112,6 @@ int report(const std::exception& error, const core::Comm& comm) {
   return core::exit_code_of(error);
 }
 
-/// The deck stored in a checkpoint, for restarts without a deck argument.
-std::string deck_from_checkpoint(const std::string& path, const core::Comm& comm) {
-  H5File file(path, H5File::Mode::Read, comm);
-  return file.read_attribute_string("/", "deck");
-}
-
 /// `text` as a TOML basic string.
 std::string toml_string(const std::string& text) {
   std::string quoted = "\"";
@@ -131,7 +130,7 @@ core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, con
                        const core::Comm& comm) {
   std::string text;
   try {
-    text = deck_from_checkpoint(checkpoint, comm);
+    text = deck_stored_in(checkpoint, comm);
   } catch (const std::exception& e) {
     throw core::DeckError("cannot read the deck stored in checkpoint '" + checkpoint + "': " + e.what());
   }
@@ -178,15 +177,13 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     } else {
       throw core::DeckError("no deck given (see --help)");
     }
+    if (cl.force && !cl.restart) throw core::DeckError("--force is only for restarts (--restart)");
     if (cl.restart) {
-      restart = *cl.restart;
-      if (*restart == "latest") {
-        const auto found = latest_numbered(deck->string("output.dir"), "checkpoint", "h5");
-        if (!found) throw core::DeckError("--restart latest: no checkpoint in '" + deck->string("output.dir") + "'");
-        restart = *found;
-      }
+      restart = *cl.restart == "latest" ? latest_sound_checkpoint(deck->string("output.dir"), comm)
+                                        : sound_checkpoint(*cl.restart, comm);
+      check_restart_deck(*restart, *deck, schema, problem.name, cl.force, comm);
     }
-  } catch (const core::DeckError& e) {
+  } catch (const core::InputError& e) {
     return report(e, comm);
   }
 

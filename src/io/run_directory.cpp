@@ -141,15 +141,7 @@ std::optional<std::string> read_run_id(const std::string& dir) {
 }
 
 void write_run_id(const std::string& dir, const std::string& id) {
-  const std::string path = (fs::path(dir) / kRunIdFileName).string();
-  {
-    std::ofstream out(temporary_name(path), std::ios::trunc);
-    out << id << "\n";
-    out.flush();
-    if (!out) throw core::IOError("cannot write '" + temporary_name(path) + "': " + std::strerror(errno));
-  }
-  if (std::rename(temporary_name(path).c_str(), path.c_str()) != 0)
-    throw core::IOError("cannot rename '" + temporary_name(path) + "' to '" + path + "': " + std::strerror(errno));
+  write_text_file((fs::path(dir) / kRunIdFileName).string(), id + "\n");
 }
 
 /// The directory's run id for a restart from `restart`: the checkpoint's, which must be the directory's

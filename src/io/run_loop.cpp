@@ -6,7 +6,6 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "mote/core/log.hpp"
@@ -53,8 +52,9 @@ double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clo
 
 void RunSettings::declare(core::DeckSchema& schema) {
   schema.table("run", "Time loop: end time, step limit, checks and progress output.");
-  schema.real("run.t_end").unit("code time").min(0.0).doc("End time of the run.");
+  schema.real("run.t_end").restart_mutable().unit("code time").min(0.0).doc("End time of the run.");
   schema.real("run.dt_min")
+      .restart_mutable()
       .default_value(0.0)
       .unit("code time")
       .min(0.0)
@@ -62,16 +62,19 @@ void RunSettings::declare(core::DeckSchema& schema) {
           "Smallest allowed solver time-step; a smaller one stops the run (exit 3) naming the limiting constraint. "
           "0 = 1e-12 run.t_end.");
   schema.integer("run.max_steps")
+      .restart_mutable()
       .int64()
       .default_value(0LL)
       .min(0)
       .doc("Stop (with a checkpoint) after this many steps in total; 0 = no limit.");
   schema.integer("run.nan_check_every")
+      .restart_mutable()
       .int64()
       .default_value(1LL)
       .min(1)
       .doc("Steps between checks of the evolved fields for NaN/Inf.");
   schema.real("run.progress_interval")
+      .restart_mutable()
       .default_value(2.0)
       .unit("s (wall)")
       .min(0.0)
@@ -85,34 +88,45 @@ void RunSettings::declare(core::DeckSchema& schema) {
 
   schema.table("output", "Snapshots, checkpoints and history.");
   schema.string("output.dir")
+      .restart_mutable()
       .default_value(std::string("output"))
       .doc("Output directory (created after the deck is validated), locked by the run while it runs.");
   schema.boolean("output.overwrite")
+      .restart_mutable()
       .default_value(false)
       .doc(
           "Let a new run delete the snapshots, checkpoints and history of an earlier run in output.dir; without it "
           "such a directory is refused (a restart of that run needs no overwrite).");
   schema.real("output.snapshot_dt")
+      .restart_mutable()
       .default_value(0.0)
       .unit("code time")
       .min(0.0)
       .doc("Time between snapshots; 0 = initial and final only.");
   schema.integer("output.checkpoint_every")
+      .restart_mutable()
       .int64()
       .default_value(0LL)
       .min(0)
       .doc("Steps between checkpoints; 0 = only at the end and on SIGINT/SIGTERM.");
   schema.real("output.checkpoint_wall")
+      .restart_mutable()
       .default_value(0.0)
       .unit("s (wall)")
       .min(0.0)
       .doc("Wall-clock seconds between checkpoints; 0 = off.");
   schema.integer("output.checkpoints_kept")
+      .restart_mutable()
       .int64()
       .default_value(2LL)
       .min(1)
       .doc("Number of most recent checkpoints kept on disk.");
-  schema.integer("output.history_every").int64().default_value(1LL).min(1).doc("Steps between rows of history.txt.");
+  schema.integer("output.history_every")
+      .restart_mutable()
+      .int64()
+      .default_value(1LL)
+      .min(1)
+      .doc("Steps between rows of history.txt.");
 }
 
 RunSettings RunSettings::from_deck(const core::Deck& deck) {
@@ -160,27 +174,47 @@ void RunLoop::write_run_attributes(H5File& file, const State& s) const {
   file.write_attribute("/", "unit_time_s", units_.time);
 }
 
+namespace {
+
+/// Writes the HDF5 file `path` with `fill(file)` under its temporary name, closes it (checked) and
+/// commits it; a failure leaves neither the file nor its temporary behind.
+template <class Fill>
+void write_hdf5(const std::string& path, const core::Comm& comm, Fill&& fill) {
+  PendingFile pending(path, comm);
+  H5File file(pending.temporary(), H5File::Mode::Create, comm);
+  fill(file);
+  file.close();
+  pending.commit();
+}
+
+/// write_text_file() on rank 0; its failure is a core::IOError on every rank.
+void write_text_on_root(const std::string& path, const std::string& text, const core::Comm& comm) {
+  std::string error;
+  if (comm.is_root()) {
+    try {
+      write_text_file(path, text);
+    } catch (const core::IOError& e) {
+      error = e.what();
+    }
+  }
+  if (comm.broadcast(error.empty() ? 0 : 1) != 0)
+    throw core::IOError(comm.is_root() ? error : "rank 0 could not write '" + path + "'");
+}
+
+}  // namespace
+
 void RunLoop::write_snapshot(Simulation& sim, State& s) {
   core::ScopedTimer timer(timers_, "io::snapshot");
   const std::string path = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "h5");
   std::string xdmf;
-  {
-    H5File file(temporary_name(path), H5File::Mode::Create, comm_);
+  write_hdf5(path, comm_, [&](H5File& file) {
     write_run_attributes(file, s);
     SnapshotWriter writer(file);
     sim.write_snapshot(writer);
     xdmf = writer.xdmf(std::filesystem::path(path).filename().string(), s.time);
-  }
-  commit_file(path, comm_);
-  const std::string xmf = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "xmf");
-  if (!xdmf.empty()) {
-    if (comm_.is_root()) {
-      std::ofstream out(temporary_name(xmf), std::ios::trunc);
-      out << xdmf;
-      if (!out) throw core::IOError("cannot write '" + temporary_name(xmf) + "'");
-    }
-    commit_file(xmf, comm_);
-  }
+  });
+  if (!xdmf.empty())
+    write_text_on_root(numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "xmf"), xdmf, comm_);
   logging::info("  snapshot ", path, " (t = ", logging::format("%.6g", s.time), ")");
   s.snapshot_count += 1;
 }
@@ -188,18 +222,22 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
 void RunLoop::write_checkpoint(Simulation& sim, State& s) {
   core::ScopedTimer timer(timers_, "io::checkpoint");
   const std::string path = numbered_path(settings_.output_dir, "checkpoint", s.next_checkpoint, "h5");
-  {
-    H5File file(temporary_name(path), H5File::Mode::Create, comm_);
-    write_run_attributes(file, s);
-    file.write_attribute("/", "dt", s.dt);
-    file.write_attribute("/", "next_output", static_cast<std::int64_t>(s.next_output));
-    file.write_attribute("/", "snapshot_count", static_cast<std::int64_t>(s.snapshot_count));
-    file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
-    file.create_group("/state");
-    sim.save_state(file);
+  try {
+    write_hdf5(path, comm_, [&](H5File& file) {
+      write_run_attributes(file, s);
+      file.write_attribute("/", "dt", s.dt);
+      file.write_attribute("/", "next_output", static_cast<std::int64_t>(s.next_output));
+      file.write_attribute("/", "snapshot_count", static_cast<std::int64_t>(s.snapshot_count));
+      file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
+      file.create_group("/state");
+      sim.save_state(file);
+    });
+  } catch (const core::IOError&) {
+    checkpoint_failed_ = true;
+    throw;
   }
-  commit_file(path, comm_);
   logging::info("  checkpoint ", path, " (step ", s.step, ")");
+  last_checkpoint_ = path;
   if (comm_.is_root()) {
     const long long stale = s.next_checkpoint - settings_.checkpoints_kept;
     for (long long i = stale; i >= 1; --i) {
@@ -211,6 +249,18 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
   s.next_checkpoint += 1;
 }
 
+void RunLoop::checkpoint_after_write_error(Simulation& sim, State& s) {
+  if (checkpoint_failed_ || report_non_finite(sim, s)) return;
+  logging::warn("a write failed at step ", s.step, "; writing a checkpoint before stopping");
+  try {
+    write_checkpoint(sim, s);
+  } catch (const core::IOError& e) {
+    logging::warn("the checkpoint could not be written either (", e.what(), "); ",
+                  last_checkpoint_.empty() ? "no checkpoint holds this run's state"
+                                           : "the last checkpoint is " + last_checkpoint_);
+  }
+}
+
 RestartSource RunLoop::read_checkpoint(Simulation& sim, State& s, const std::string& path) {
   RestartSource source{path, ""};
   try {
@@ -220,6 +270,7 @@ RestartSource RunLoop::read_checkpoint(Simulation& sim, State& s, const std::str
   } catch (const std::exception& e) {
     throw core::InputError("cannot restart from checkpoint '" + path + "': " + e.what());
   }
+  last_checkpoint_ = path;
   logging::info("restarted from ", path, " at step ", s.step, ", t = ", logging::format("%.10g", s.time));
   return source;
 }
@@ -243,8 +294,9 @@ bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
   const auto bad = sim.find_non_finite();
   if (bad)
     logging::error("non-finite value in field '", bad->field, "' at ", bad->location, " after step ", s.step,
-                   logging::format(" (t = %.10g)", s.time), "; stopping. The last checkpoint in ", settings_.output_dir,
-                   " holds the last good state.");
+                   logging::format(" (t = %.10g)", s.time), "; stopping. ",
+                   last_checkpoint_.empty() ? "No checkpoint of this run was written before it."
+                                            : "The last good checkpoint is " + last_checkpoint_ + ".");
   return comm_.max(bad ? 1 : 0) != 0;
 }
 
@@ -274,22 +326,33 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   if (restart) source = read_checkpoint(sim, s, *restart);
   const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
   run_id_ = directory.run_id();
-  HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
-                      restart ? s.step : -1);
   const long long start_step = s.step;
-  if (!restart) {
+  try {
+    return run_steps(sim, s, restart.has_value(), wall_start);
+  } catch (const core::IOError&) {
+    if (s.step > start_step) checkpoint_after_write_error(sim, s);
+    throw;
+  }
+}
+
+int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_start) {
+  HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
+                      restarting ? s.step : -1);
+  const long long start_step = s.step;
+  if (!restarting) {
     if (report_non_finite(sim, s)) return core::kExitNonFinite;
     history.record(s.step, s.time, 0.0, sim.diagnostics());
     write_snapshot(sim, s);
     s.next_output = 1;
   }
   double last_progress = wall_now(), last_checkpoint = wall_now();
-  bool snapshot_current = !restart;
+  bool snapshot_current = !restarting;
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
       logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
                     "; writing a checkpoint and stopping");
+      if (report_non_finite(sim, s)) return core::kExitNonFinite;
       write_checkpoint(sim, s);
       return core::kExitInterrupted;
     }

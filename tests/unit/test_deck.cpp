@@ -234,3 +234,23 @@ TEST(ExitCodes, FollowTheKindOfFailure) {
   EXPECT_EQ(exit_code_of(IOError("x")), 5);
   EXPECT_EQ(exit_code_of(std::runtime_error("x")), 1);
 }
+
+// Issue 22: a restart compares decks key by key; restart_mutable keys are marked as such.
+TEST(Deck, ChangesToNameEveryDifferingKey) {
+  DeckSchema s = make_schema();
+  s.table("run", "run");
+  s.real("run.t_end").default_value(1.0).restart_mutable();
+  const Deck stored = Deck::parse("[grid]\nlength = 2.0\n", "a.toml", s);
+  EXPECT_TRUE(stored.changes_to(Deck::parse("[grid]\nlength = 2.0\nnx = 64\n", "b.toml", s)).empty());
+  const Deck given = Deck::parse("[grid]\nlength = 3.0\n[run]\nt_end = 5.0\n[dust]\ngrain_size = 0.1\n", "c.toml", s);
+  const auto changes = stored.changes_to(given);
+  ASSERT_EQ(changes.size(), 3u);
+  EXPECT_EQ(changes[0].key, "grid.length");
+  EXPECT_EQ(changes[0].before, "2.0");
+  EXPECT_EQ(changes[0].after, "3.0");
+  EXPECT_FALSE(changes[0].restart_mutable);
+  EXPECT_EQ(changes[1].key, "dust.grain_size");
+  EXPECT_EQ(changes[1].before, "(absent)");
+  EXPECT_EQ(changes[2].key, "run.t_end");
+  EXPECT_TRUE(changes[2].restart_mutable);
+}

@@ -1,9 +1,11 @@
 // HDF5 file wrapper and output-file helpers (include/mote/io/h5_file.hpp, output_files.hpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/io/h5_file.hpp"
 #include "mote/io/output_files.hpp"
 
@@ -57,6 +59,57 @@ TEST(H5File, BlocksAndAttributesRoundTripExactly) {
   EXPECT_THROW(f.read("/missing", Block::whole({3}), ids2.data()), std::runtime_error);
   EXPECT_THROW(f.read("/ids", Block::whole({4}), ids2.data()), std::runtime_error);  // wrong shape
   EXPECT_THROW(f.read_attribute_real("/", "nothing"), std::runtime_error);
+}
+
+// Issue 22: checkpoint state carries a checksum; a changed value or a NaN is found.
+TEST(H5File, StateDatasetsCarryAChecksum) {
+  const auto comm = mote::core::Comm::world();
+  const std::string path = scratch("state.h5");
+  std::vector<double> a = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
+  const std::vector<std::int32_t> ids = {7, -8, 9};
+  {
+    H5File f(path, H5File::Mode::Create, comm);
+    f.write("/state/a", Block::whole({2, 3}), a.data());
+    f.write("/state/sub/ids", Block::whole({3}), ids.data());
+    f.write("/other", Block::whole({2, 3}), a.data());
+    f.close();
+  }
+  {
+    const H5File f(path, H5File::Mode::Read, comm);
+    EXPECT_EQ(f.datasets("/state"), (std::vector<std::string>{"/state/a", "/state/sub/ids"}));
+    EXPECT_EQ(f.check_state_dataset("/state/a"), "");
+    EXPECT_EQ(f.check_state_dataset("/state/sub/ids"), "");
+    EXPECT_NE(f.check_state_dataset("/other").find("has no checksum"), std::string::npos);
+  }
+  // Change one element behind the checksum's back, then store a NaN.
+  for (const double value : {2.0000000000000004, std::nan("")}) {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t dset = H5Dopen2(file, "/state/a", H5P_DEFAULT);
+    a[1] = value;
+    H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.data());
+    H5Dclose(dset);
+    H5Fclose(file);
+    const H5File f(path, H5File::Mode::Read, comm);
+    const std::string defect = f.check_state_dataset("/state/a");
+    EXPECT_NE(defect.find(std::isnan(value) ? "holds a non-finite value at element 1" : "does not match its checksum"),
+              std::string::npos)
+        << defect;
+  }
+}
+
+// Issue 22: a file that cannot be written leaves nothing at its path and says why.
+TEST(H5File, FailedWriteLeavesNoFile) {
+  const std::string path = scratch("no_such_dir") + "/x.h5";
+  H5File f(path, H5File::Mode::Create, mote::core::Comm::world());
+  f.write("/a", Block::whole({1}), std::vector<double>{1.0}.data());
+  try {
+    f.close();
+    ADD_FAILURE() << "close() into a missing directory succeeded";
+  } catch (const mote::core::IOError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create '" + path + "': No such file or directory"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST(H5File, MissingFileIsAnError) {

@@ -130,11 +130,34 @@ TEST_F(RunLoopTest, NonFiniteStopsAndKeepsLastGoodCheckpoint) {
   const auto latest = io::latest_numbered(dir_, "checkpoint", "h5");
   ASSERT_TRUE(latest);
   EXPECT_EQ(io::index_of(*latest), 2);  // written at step 10; none after the NaN
+  EXPECT_NE(err.find("The last good checkpoint is " + *latest + "."), std::string::npos) << err;
   io::H5File f(*latest, io::H5File::Mode::Read, core::Comm::world());
   EXPECT_EQ(f.read_attribute_int("/", "step"), 10);
   double y = 0;
   f.read("/state/y", io::Block::whole({1}), &y);
   EXPECT_TRUE(std::isfinite(y));
+}
+
+// Issue 22: no promise of a checkpoint that does not exist; none written from a non-finite state.
+TEST_F(RunLoopTest, NonFiniteBeforeAnyCheckpointSaysSo) {
+  Decay sim;
+  sim.poison_step = 2;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=5"}), core::kExitNonFinite);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("No checkpoint of this run was written before it."), std::string::npos) << err;
+  EXPECT_EQ(err.find("last good checkpoint"), std::string::npos) << err;
+  EXPECT_FALSE(io::latest_numbered(dir_, "checkpoint", "h5"));
+}
+
+TEST_F(RunLoopTest, SignalOnNonFiniteStateWritesNoCheckpoint) {
+  Decay sim;
+  sim.poison_step = 3;
+  sim.signal_step = 3;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(sim, {"run.nan_check_every=100"}), core::kExitNonFinite);
+  testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(io::latest_numbered(dir_, "checkpoint", "h5"));
 }
 
 TEST_F(RunLoopTest, SigtermWritesCheckpointAndResumes) {

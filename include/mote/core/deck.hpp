@@ -21,6 +21,13 @@ class DeckError : public InputError {
   using InputError::InputError;
 };
 
+/// A key whose resolved value differs between two decks ("(absent)" where its table is off).
+struct KeyChange {
+  std::string key;
+  std::string before, after;  // TOML text of the values
+  bool restart_mutable;       // declared KeySpec::restart_mutable()
+};
+
 class Deck {
  public:
   /// Reads and validates `path`, then applies `overrides` ("table.key=value").
@@ -41,6 +48,8 @@ class Deck {
 
   /// The resolved deck (every active key, defaults filled in) as TOML text.
   std::string to_toml() const;
+  /// The keys whose resolved values differ from this deck's in `other` (same schema), in declaration order.
+  std::vector<KeyChange> changes_to(const Deck& other) const;
   const std::string& source() const { return source_; }
 
  private:

@@ -45,6 +45,9 @@ class KeySpec {
   KeySpec& allow_non_finite();
   /// The integer is read as a 64-bit long long (otherwise it must fit an int).
   KeySpec& int64();
+  /// The key may differ between a checkpoint's deck and the deck of its restart
+  /// (stop conditions, output cadence, progress); any other change is refused.
+  KeySpec& restart_mutable();
 
   const std::string& table() const { return table_; }
   const std::string& key() const { return key_; }
@@ -55,6 +58,7 @@ class KeySpec {
   const std::optional<Value>& default_opt() const { return default_; }
   bool required() const { return !default_.has_value(); }
   const std::vector<std::string>& choices() const { return choices_; }
+  bool is_restart_mutable() const { return restart_mutable_; }
 
   /// Empty if the value is allowed; otherwise what was expected ("> 0", "one of ...").
   std::string range_violation(const Value& value) const;
@@ -73,6 +77,7 @@ class KeySpec {
   std::vector<std::string> choices_;
   bool non_finite_allowed_ = false;
   bool int64_ = false;
+  bool restart_mutable_ = false;
 };
 
 struct TableSpec {

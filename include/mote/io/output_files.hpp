@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mote/core/comm.hpp"
 
@@ -20,8 +21,34 @@ std::string temporary_name(const std::string& final_path);
 /// every rank waits.
 void commit_file(const std::string& final_path, const core::Comm& comm);
 
+/// A file being written under its temporary name: commit() renames it into
+/// place; destroyed uncommitted (a write failed), rank 0 removes the temporary.
+class PendingFile {
+ public:
+  PendingFile(std::string final_path, const core::Comm& comm);
+  ~PendingFile();
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+  const std::string& temporary() const { return temporary_; }
+  /// commit_file() of the final path.
+  void commit();
+
+ private:
+  std::string final_, temporary_;
+  core::Comm comm_;
+  bool committed_ = false;
+};
+
+/// Writes `text` to `path` by this process alone, atomically: to the temporary
+/// name, flushed and closed with checks, then renamed. A failure is a
+/// core::IOError naming the file and the system error; the temporary is removed.
+void write_text_file(const std::string& path, const std::string& text);
+
 /// "<dir>/<stem>_<index, 5 digits>.<ext>"
 std::string numbered_path(const std::string& dir, const std::string& stem, long long index, const std::string& ext);
+
+/// Every "<stem>_NNNNN.<ext>" in dir, newest (highest number) first.
+std::vector<std::string> numbered_files(const std::string& dir, const std::string& stem, const std::string& ext);
 
 /// Highest-numbered "<stem>_NNNNN.<ext>" in dir, if any.
 std::optional<std::string> latest_numbered(const std::string& dir, const std::string& stem, const std::string& ext);

@@ -1,11 +1,12 @@
 // The main() of every problem executable:
-//   <problem> [deck.toml] [table.key=value ...] [--restart FILE|latest] [--check]
+//   <problem> [deck.toml] [table.key=value ...] [--restart FILE|latest [--force]] [--check]
 //   <problem> --help | --version | --deck-reference | --kokkos-help
 // Order of work: declare the deck (and answer --help, --version and
 // --deck-reference before Kokkos starts), parse the command line, validate the
 // whole deck with its cross-key rules (nothing allocated or written before it
-// is valid), construct the problem, create the output directory, then run the
-// loop. Every failure ends with an exit code of core/exit_codes.hpp.
+// is valid), vet the restart's checkpoint and compare its deck (restart.hpp),
+// construct the problem, create the output directory, then run the loop. Every failure ends with an exit code of
+// core/exit_codes.hpp.
 #pragma once
 
 #include <functional>

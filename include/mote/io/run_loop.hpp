@@ -2,7 +2,10 @@
 // to output times, progress lines, snapshots (HDF5 + XDMF), history,
 // checkpoints, restarts, SIGINT/SIGTERM handling and non-finite detection.
 // It holds output.dir for the run's life (run_directory.hpp) and stores the
-// run id in every snapshot, checkpoint and the history header.
+// run id in every snapshot, checkpoint and the history header. Every write is
+// checked: a failed one (core::IOError, exit 5) leaves no file under its final
+// name, and the run first saves its state in a checkpoint if it can. A
+// checkpoint is only written from a state that passed the non-finite check.
 // Its settings are the deck tables [run] and [output].
 #pragma once
 
@@ -58,9 +61,14 @@ class RunLoop {
     long long snapshot_count = 0;  // number of snapshot files written (file numbering)
     long long next_checkpoint = 1;
   };
+  /// The time loop after the directory is claimed: history, snapshots, checkpoints.
+  int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_checkpoint(Simulation& sim, State& s);
+  /// After a failed write: a checkpoint of the current state, unless it was the checkpoint that
+  /// failed or the state is not finite; its own failure is only reported.
+  void checkpoint_after_write_error(Simulation& sim, State& s);
   /// Restores `path` and returns it with its run id; any failure is a core::InputError naming the checkpoint (exit 2).
   RestartSource read_checkpoint(Simulation& sim, State& s, const std::string& path);
   /// Restores `path`; returns its run id ("" if it has none).
@@ -77,7 +85,9 @@ class RunLoop {
   units::UnitSystem units_;
   core::Comm comm_;
   core::Timers& timers_;
-  std::string run_id_;  // of the run that owns output.dir, set by run()
+  std::string run_id_;           // of the run that owns output.dir, set by run()
+  std::string last_checkpoint_;  // written or restarted from by this run; "" if none
+  bool checkpoint_failed_ = false;
 };
 
 }  // namespace mote::io

@@ -1,0 +1,284 @@
+#!/usr/bin/env python3
+"""Runs that cannot lose or mix data: full disks, damaged checkpoints, changed decks (issue 22, items 3, 5-7).
+
+    fault_matrix.py EXE WORKDIR
+
+Runs gaussian_pulse (16 x 16) and checks, each with the exit code, the message
+and checksums of the files that must not change:
+  * full disk during a snapshot (RLIMIT_FSIZE between the sizes of a checkpoint and a
+    snapshot): exit 5 naming the file and "File too large", a checkpoint of the state
+    written before stopping, no .tmp, no HDF5 error stack in the output, no "infinite loop
+    closing library", earlier files unchanged;
+  * the same with a limit below a checkpoint: no checkpoint either, the earlier ones kept
+    and restartable;
+  * history.txt on a full disk (RLIMIT) and on /dev/full, the XDMF on /dev/full: exit 5 naming
+    the file and the system error; the history keeps only complete rows;
+  * a small tmpfs filling up (only where this process may mount one, else skipped);
+  * truncated, bit-flipped and NaN-holding checkpoints: --restart FILE refuses them (exit 2,
+    naming the defect), --restart latest skips them with a warning naming each and restarts
+    from the previous sound one; one of another problem is refused naming both problems;
+  * a restart whose deck changes physics or geometry (transport.vx, grid.x_max) or the
+    resolution (grid.nx) is refused (exit 2) naming the key and both values; restart-mutable
+    keys (run.t_end) may change; --force accepts a change and logs it.
+Ends with 'N passed, M failed'.
+"""
+import hashlib
+import os
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+from harness import Checks, run
+
+BAD_INPUT, IO_ERROR = 2, 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
+
+exe, work = sys.argv[1], sys.argv[2]
+deck = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "problems", "gaussian_pulse",
+                                    "gaussian_pulse.toml"))
+common = ["grid.nx=16", "grid.ny=16", "output.checkpoint_every=4", "output.checkpoints_kept=10",
+          "run.progress_interval=0"]
+checks = Checks()
+# Open MPI's singleton start-up keeps PMIx data in shared-memory files, which RLIMIT_FSIZE would break.
+os.environ["PMIX_MCA_gds"] = "hash"
+
+
+def checksums(directory, skip=()):
+    """{file name: sha256} of every regular file in directory except those in skip (not the /dev/full links)."""
+    sums = {}
+    for name in sorted(os.listdir(directory)):
+        if name not in skip and not os.path.islink(os.path.join(directory, name)):
+            with open(os.path.join(directory, name), "rb") as f:
+                sums[name] = hashlib.sha256(f.read()).hexdigest()
+    return sums
+
+
+def file_size_limit(limit):
+    """preexec_fn: writes beyond `limit` bytes per file fail with EFBIG (SIGXFSZ ignored)."""
+    def apply():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return apply
+
+
+def case(name, cmd, code, expected, absent=(), unchanged=None, skip=(), limit=None):
+    """Runs cmd (under a file-size limit if given); checks the exit code, that the output holds every
+    `expected` and no `absent` text, and that the files of directory `unchanged` (but `skip`) keep their bytes."""
+    before = checksums(unchanged, skip) if unchanged else None
+    start = time.time()
+    p = run(cmd, expect=None, cwd=work, preexec_fn=file_size_limit(limit) if limit else None)
+    text = p.stdout + p.stderr
+    checks.check(p.returncode == code, f"{name}: exit code {p.returncode} == {code} ({time.time() - start:.1f} s)" +
+                 ("" if p.returncode == code else f"\n{text[-3000:]}"))
+    for e in expected:
+        checks.check(e in text, f"{name}: message contains {e!r}" + ("" if e in text else f"\n{text[-3000:]}"))
+    for e in absent:
+        checks.check(e not in text, f"{name}: output does not contain {e!r}" + ("" if e not in text else
+                                                                              f"\n{text[-3000:]}"))
+    if unchanged:
+        after = checksums(unchanged, skip)
+        kept = {n: s for n, s in after.items() if n in before}
+        checks.check(kept == before and set(before) <= set(after), f"{name}: earlier files unchanged")
+    return text
+
+
+def fresh_run(name, *extra):
+    """A run of 6 steps (checkpoints at steps 4 and 6) into WORKDIR/name; returns the directory."""
+    d = os.path.join(work, name)
+    run([exe, deck, *common, f"output.dir={d}", "run.max_steps=6", *extra], cwd=work)
+    return d
+
+
+def files(d, prefix, ext=".h5"):
+    return sorted(f for f in os.listdir(d) if f.startswith(prefix) and f.endswith(ext))
+
+
+def no_temporaries(name, d):
+    tmp = [f for f in os.listdir(d) if f.endswith(".tmp")]
+    checks.check(not tmp, f"{name}: no temporary file left ({tmp})")
+
+
+def history_rows_complete(name, d):
+    """Every row of history.txt has as many columns as its header."""
+    with open(os.path.join(d, "history.txt")) as f:
+        text = f.read()
+    lines = text.splitlines()
+    columns = len(lines[0].split()) - 1
+    rows = [l for l in lines if not l.startswith("#")]
+    ok = text.endswith("\n") and all(len(r.split()) == columns for r in rows)
+    checks.check(ok, f"{name}: history.txt holds only complete rows ({len(rows)})")
+
+
+HDF5_NOISE = ["HDF5-DIAG", "infinite loop closing library", "#000:"]
+
+
+def full_disk_snapshot():
+    """RLIMIT between a checkpoint's and a snapshot's size: the snapshot fails, the checkpoint is written."""
+    d = fresh_run("disk_snapshot")
+    ckpt = os.path.getsize(os.path.join(d, files(d, "checkpoint_")[-1]))
+    snap = os.path.getsize(os.path.join(d, files(d, "snapshot_")[-1]))
+    checks.check(snap > ckpt + 2000, f"a snapshot ({snap} B) is larger than a checkpoint ({ckpt} B)")
+    before, next_snapshot = files(d, "checkpoint_"), f"snapshot_{len(files(d, 'snapshot_')):05d}.h5"
+    case("full disk during a snapshot", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                         "output.checkpoint_every=0"], IO_ERROR,
+         [f"cannot write '{d}/{next_snapshot}.tmp': File too large", "writing a checkpoint before stopping"], HDF5_NOISE, unchanged=d, skip=("history.txt",),
+         limit=(ckpt + snap) // 2)
+    no_temporaries("full disk during a snapshot", d)
+    checks.check(not os.path.exists(os.path.join(d, next_snapshot)), "no snapshot under its final name")
+    new = [f for f in files(d, "checkpoint_") if f not in before]
+    checks.check(len(new) == 1, f"a checkpoint of the state was written before stopping ({new})")
+    history_rows_complete("full disk during a snapshot", d)
+    case("restart from that checkpoint", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], 0,
+         [f"restarted from {os.path.join(d, new[0]) if new else '?'}", "finished"])
+
+
+def full_disk_everything():
+    """RLIMIT below a checkpoint's size: snapshot and checkpoint fail; the earlier checkpoints remain."""
+    d = fresh_run("disk_full")
+    ckpt = os.path.getsize(os.path.join(d, files(d, "checkpoint_")[-1]))
+    case("full disk, no checkpoint fits", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                           "output.checkpoint_every=0"], IO_ERROR,
+         ["File too large", "the checkpoint could not be written either",
+          f"the last checkpoint is {os.path.join(d, files(d, 'checkpoint_')[-1])}"], HDF5_NOISE,
+         unchanged=d, skip=("history.txt",), limit=ckpt - 1000)
+    no_temporaries("full disk, no checkpoint fits", d)
+    case("restart after the full disk", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], 0,
+         ["finished"])
+
+
+def full_disk_history():
+    """history.txt reaching RLIMIT (no snapshot due before the end): exit 5, only complete rows kept."""
+    d = fresh_run("disk_history")
+    size = os.path.getsize(os.path.join(d, "history.txt"))
+    case("full disk in the history", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                      "output.snapshot_dt=0", "output.checkpoint_every=0"], IO_ERROR,
+         [f"cannot write history file '{d}/history.txt': File too large"], HDF5_NOISE[:2], unchanged=d,
+         skip=("history.txt",), limit=size + 250)
+    history_rows_complete("full disk in the history", d)
+    no_temporaries("full disk in the history", d)
+
+
+def dev_full():
+    """The history's and an XDMF file's temporaries on /dev/full: exit 5 with ENOSPC, nothing half-written."""
+    d = fresh_run("dev_full")
+    os.symlink("/dev/full", os.path.join(d, "history.txt.tmp"))
+    case("history on /dev/full", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], IO_ERROR,
+         [f"cannot write '{d}/history.txt.tmp': No space left on device"], unchanged=d)
+    checks.check(not os.path.lexists(os.path.join(d, "history.txt.tmp")), "history on /dev/full: temporary removed")
+    before, xmf = files(d, "checkpoint_"), f"snapshot_{len(files(d, 'snapshot_')):05d}.xmf"
+    os.symlink("/dev/full", os.path.join(d, xmf + ".tmp"))
+    case("XDMF on /dev/full", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                               "output.checkpoint_every=0"], IO_ERROR,
+         [f"cannot write '{d}/{xmf}.tmp': No space left on device", "writing a checkpoint"],
+         unchanged=d, skip=("history.txt",))
+    checks.check(not os.path.exists(os.path.join(d, xmf)), "XDMF on /dev/full: no .xmf file")
+    checks.check(len(files(d, "checkpoint_")) == len(before) + 1, "XDMF on /dev/full: a checkpoint was written")
+
+
+def small_tmpfs():
+    """A 192 KiB tmpfs filling up during a run: exit 5, no .tmp, every .h5 left readable."""
+    d = os.path.join(work, "tmpfs")
+    os.makedirs(d)
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=192k", "tmpfs", d], capture_output=True).returncode != 0:
+        print("SKIP small tmpfs: cannot mount one here (needs root); the RLIMIT and /dev/full cases cover full disks")
+        return
+    try:
+        case("tmpfs full", [exe, deck, *common, f"output.dir={d}", "grid.nx=48", "grid.ny=48",
+                            "output.checkpoint_every=2"], IO_ERROR, ["No space left on device"], HDF5_NOISE)
+        no_temporaries("tmpfs full", d)
+        readable = True
+        for f in files(d, ""):
+            try:
+                h5py.File(os.path.join(d, f), "r").close()
+            except OSError:
+                readable = False
+        checks.check(readable, "tmpfs full: every .h5 under a final name is readable")
+    finally:
+        subprocess.run(["umount", d])
+
+
+def damage(d):
+    """Three damaged copies of the newest checkpoint of d (truncated, one bit flipped, a NaN); returns them."""
+    newest = os.path.join(d, files(d, "checkpoint_")[-1])
+    out = {}
+    for kind in ("truncated", "bitflip", "nan"):
+        path = os.path.join(work, f"{kind}.h5")
+        shutil.copy(newest, path)
+        out[kind] = path
+    with open(out["truncated"], "r+b") as f:
+        f.truncate(os.path.getsize(newest) // 2)
+    with h5py.File(out["bitflip"], "r") as f:
+        offset = f["/state/density"].id.get_offset()
+    with open(out["bitflip"], "r+b") as f:
+        f.seek(offset + 8 * 37)
+        byte = f.read(1)[0]
+        f.seek(offset + 8 * 37)
+        f.write(bytes([byte ^ 1]))
+    with h5py.File(out["nan"], "r+") as f:
+        f["/state/density"][3, 5] = np.nan
+    return out
+
+
+def damaged_checkpoints():
+    """--restart FILE refuses a damaged checkpoint; --restart latest skips it for the previous sound one."""
+    d = fresh_run("damaged")
+    ckpts = files(d, "checkpoint_")
+    bad = damage(d)
+    expected = {"truncated": "it cannot be read", "bitflip": "dataset /state/density does not match its checksum",
+                "nan": "dataset /state/density holds a non-finite value"}
+    for kind, path in bad.items():
+        case(f"restart FILE {kind}", [exe, "--restart", path, deck, *common, f"output.dir={d}"], BAD_INPUT,
+             [f"cannot restart from checkpoint '{path}': {expected[kind]}"], unchanged=d)
+    newest, previous = os.path.join(d, ckpts[-1]), os.path.join(d, ckpts[-2])
+    for kind, path in bad.items():
+        shutil.copy(path, newest)
+        case(f"restart latest, newest {kind}", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                                "run.max_steps=6"], 0,
+             [f"skipping checkpoint '{newest}': {expected[kind]}", f"restarted from {previous} at step 4"])
+    foreign = os.path.join(work, "foreign.h5")
+    shutil.copy(previous, foreign)
+    with h5py.File(foreign, "r+") as f:
+        f.attrs["problem"] = np.bytes_("disc_pulse")
+    case("restart FILE of another problem", [exe, "--restart", foreign, deck, *common, f"output.dir={d}"], BAD_INPUT,
+         [f"checkpoint '{foreign}' belongs to problem 'disc_pulse', not 'gaussian_pulse'"], unchanged=d)
+    for c in ckpts:
+        shutil.copy(bad["bitflip"], os.path.join(d, c))
+    case("restart latest, all damaged", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], BAD_INPUT,
+         [f"none of the {len(ckpts)} checkpoints in '{d}' is sound"], unchanged=d)
+
+
+def changed_decks():
+    """A restart may change restart-mutable keys only, unless forced; a resolution change is named as such."""
+    d = fresh_run("decks")
+    restart = [exe, "--restart", "latest", deck, *common, f"output.dir={d}"]
+    for key, new, old in (("transport.vx", "2.0", "1.0"), ("grid.x_max", "2.0", "1.0"), ("grid.nx", "32", "16")):
+        case(f"restart with {key} changed", [*restart, f"{key}={new}"], BAD_INPUT,
+             ["in keys that may not change on restart (--force to accept)",
+              f"{key} = {old} in the checkpoint, {new} now"], ["shape"], unchanged=d)
+    case("restart with run.t_end changed", [*restart, "run.t_end=0.3", "run.max_steps=8"], 0,
+         ["restart changes run.t_end = 0.4 in the checkpoint, 0.3 now", "stopped at run.max_steps"])
+    case("--force", [*restart, "transport.vx=2.0", "--force"], 0,
+         ["--force: restart changes transport.vx = 1.0 in the checkpoint, 2.0 now", "finished"])
+
+
+def main():
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    full_disk_snapshot()
+    full_disk_everything()
+    full_disk_history()
+    dev_full()
+    small_tmpfs()
+    damaged_checkpoints()
+    changed_decks()
+    shutil.rmtree(work, ignore_errors=True)
+    return checks.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
