@@ -216,9 +216,10 @@ void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, i
         const Real chi = extinction(i, j, b);
         const Real lambda = kley_limiter(limiter_ratio(math::sqrt(gR * gR + gZ * gZ), chi, E(i, j, b)));
         // Where E is nearly uniform (R -> 0 in a cell however thin) lambda -> 1/3 and c / 3 chi is
-        // unbounded; c r, r the distance to the star, bounds it: the flux D |grad E| stays below
-        // c E for every gradient scale E / |grad E| longer than r, so the limit is unchanged,
-        // while rows of nearly empty cells no longer carry coefficients ~1e22 times their neighbours'.
+        // unbounded; c r, r the distance to the star, bounds it (a departure from eq. 41). It binds
+        // only in cells thin over r whose E varies on a scale L longer than r, where the flux
+        // becomes c E r / L instead of ~c E; rows of nearly empty cells no longer carry
+        // coefficients ~1e22 times their neighbours'.
         const Real r = math::sqrt(Rc(i) * Rc(i) + Zc(i, j) * Zc(i, j));
         D(i, j) = math::fmin(c * lambda / chi, c * r);
       });

@@ -33,19 +33,21 @@ checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
 checks.check(abs(out["energy_balance"]) <= irradiation.BALANCE,
              f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {irradiation.BALANCE})")
 
-# Two steps of 0.5: the restart from the checkpoint after the first continues bit for bit.
+# Two steps of 0.5: a restart from the checkpoint after the first continues bit for bit.
 both = os.path.join(work, "two_steps")
 shutil.rmtree(both, ignore_errors=True)
-run([exe, deck, f"output.dir={both}", "output.snapshot_dt=0.5", "output.checkpoint_every=1"])
+two = ["output.snapshot_dt=0.5", "output.checkpoint_every=1", "output.checkpoints_kept=5"]
+run([exe, deck, f"output.dir={both}"] + two)
 first = mote.list_snapshots(both)
 restarted = os.path.join(work, "restarted")
 shutil.rmtree(restarted, ignore_errors=True)
 shutil.copytree(both, restarted)
 for name in os.listdir(restarted):
-    if name.startswith("snapshot_00002") or name.startswith("checkpoint_00002"):
+    if name.startswith(("snapshot_00002", "checkpoint_")) and name != "checkpoint_00001.h5":
         os.remove(os.path.join(restarted, name))
-run([exe, deck, f"output.dir={restarted}", "output.snapshot_dt=0.5", "output.checkpoint_every=1", "--restart",
-     "latest"])
+run([exe, deck, f"output.dir={restarted}", "--restart", os.path.join(restarted, "checkpoint_00001.h5")] + two)
+steps = mote.read_history(os.path.join(restarted, "history.txt"))["step"]
+checks.check(int(steps[-1]) == 2, f"the restarted run took step 2 (last history step {int(steps[-1])})")
 a = mote.read_snapshot(first[-1]).fields["T"]
 b = mote.last_snapshot(restarted).fields["T"]
 checks.check(np.array_equal(a, b), "restart from the step-1 checkpoint reproduces T bit for bit")

@@ -44,17 +44,22 @@ checks.check(out["mid_change"] < passive.CONVERGENCE and out["top_change"] < pas
              f"(< {passive.CONVERGENCE})")
 
 both = fresh("two_steps")
-two = ["run.t_end=2e-3", "output.snapshot_dt=1e-3", "output.checkpoint_every=1"]
+two = ["run.t_end=2e-3", "output.checkpoints_kept=5", "output.snapshot_dt=1e-3", "output.checkpoint_every=1"]
 run([exe, deck, f"output.dir={both}"] + two)
 history = mote.read_history(os.path.join(both, "history.txt"))
 checks.check(history["temperature_updates"][-1] == 2, f"two temperature updates in two steps "
              f"({int(history['temperature_updates'][-1])})")
 restarted = fresh("restarted")
 shutil.copytree(both, restarted, dirs_exist_ok=True)
+# Keep only the step-1 checkpoint and what was written before it, and restart from that file.
 for name in os.listdir(restarted):
-    if name.startswith("snapshot_00002") or name.startswith("checkpoint_00002"):
+    if name.startswith(("snapshot_00002", "checkpoint_")) and name != "checkpoint_00001.h5":
         os.remove(os.path.join(restarted, name))
-run([exe, deck, f"output.dir={restarted}", "--restart", "latest"] + two)
+checkpoint = os.path.join(restarted, "checkpoint_00001.h5")
+checks.check(os.path.exists(checkpoint), "the two-step run kept its step-1 checkpoint")
+run([exe, deck, f"output.dir={restarted}", "--restart", checkpoint] + two)
+steps = mote.read_history(os.path.join(restarted, "history.txt"))["step"]
+checks.check(int(steps[-1]) == 2, f"the restarted run took step 2 (last history step {int(steps[-1])})")
 a, b = mote.list_snapshots(both)[-1], mote.last_snapshot(restarted)
 a = mote.read_snapshot(a)
 same = all(np.array_equal(a.fields[k], b.fields[k]) for k in ("gas_T", "rad_E", "gas_rho", "dust_rho_0", "dust_vR_4"))

@@ -4,7 +4,7 @@
 // hydrostatic density and the dust stopping times follow it (checked against
 // the Epstein law worked out here in cgs); with viscous heating (eq. 44) the
 // power leaving the open sides is the absorbed starlight plus the viscous
-// power; the update schedule follows the predicted change; a failed solve
+// power; the update schedule follows the predicted change; a failed update
 // keeps the temperature; a checkpoint restart continues bit for bit.
 #include <gtest/gtest.h>
 
@@ -172,22 +172,29 @@ TEST(DiscTemperature, RadiatedPowerIsStarlightPlusViscousHeating) {
   }
   EXPECT_GE(viscous / radiated, 0.1) << "the viscous share must be large enough to be seen";
   const double balance = radiated / (absorbed + viscous) - 1.0;
-  EXPECT_LE(std::fabs(balance), 1e-7);  // measured 8.5e-10 at radiation.tolerance = 1e-8
+  EXPECT_LE(std::fabs(balance), 1e-8);  // measured 8.5e-10 at radiation.tolerance = 1e-8
   std::printf("viscous share %.3f, balance %.2e\n", viscous / radiated, balance);
 }
 
-TEST(DiscTemperature, FailedSolveKeepsTheTemperature) {
-  DiscRun run({"radiation.max_iterations=1", "radiation.ilu_fill=-1", "radiation.max_fill_level=0"});
-  const auto before = on_host(run.sim.gas().fields().T);
-  EXPECT_THROW(run.steps(1), core::NumericalError);
-  EXPECT_EQ(run.sim.temperature()->updates(), 0);
-  const auto after = on_host(run.sim.gas().fields().T);
-  const auto T_solver = on_host(run.sim.temperature()->state().T);
-  for (size_t i = 0; i < before.extent(0); ++i)
-    for (size_t j = 0; j < before.extent(1); ++j) {
-      ASSERT_EQ(after(i, j), before(i, j));
-      ASSERT_EQ(T_solver(i, j), before(i, j));
-    }
+TEST(DiscTemperature, FailedUpdatesKeepTheTemperature) {
+  const auto same = [](const auto& a, const auto& b) {
+    const auto ha = on_host(a), hb = on_host(b);
+    for (size_t k = 0; k < ha.size(); ++k)
+      if (ha.data()[k] != hb.data()[k]) return false;
+    return true;
+  };
+  // Every rung fails on the first solve. (A relaxation that solves and then
+  // fails to settle, which exercises the roll-back of T and E, has no test yet:
+  // the thin and thick decks tried here settle even at update_tolerance 1e-9.)
+  {
+    DiscRun run({"radiation.max_iterations=1", "radiation.ilu_fill=-1", "radiation.max_fill_level=0"});
+    RealView2 before("T_before", run.sim.grid().nr_total(), run.sim.grid().nt_total());
+    Kokkos::deep_copy(before, run.sim.gas().fields().T);
+    EXPECT_THROW(run.steps(1), core::NumericalError);
+    EXPECT_EQ(run.sim.temperature()->updates(), 0);
+    EXPECT_TRUE(same(run.sim.gas().fields().T, before));
+    EXPECT_TRUE(same(run.sim.temperature()->state().T, before));
+  }
 }
 
 TEST(DiscTemperature, CheckpointRestartIsBitIdentical) {

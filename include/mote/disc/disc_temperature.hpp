@@ -23,8 +23,11 @@
 // next is due after update_tolerance * elapsed / delta (the time the same
 // rate takes to change T by update_tolerance), at most max_growth * elapsed.
 //
-// A failed solve leaves T, E and the gas unchanged and raises
-// core::NumericalError. One MPI rank only (as FldSolver).
+// The steady state at the first call is mote's choice (RBO24 sec. 6 only
+// says the first update is on the first step). A failed solve leaves T, E
+// and the gas temperature unchanged and raises core::NumericalError; the
+// dust and gas step of that driver step is not rolled back (the run stops).
+// One MPI rank only (as FldSolver).
 #pragma once
 
 #include <string>
@@ -68,7 +71,6 @@ class DiscTemperature {
   long long updates() const { return updates_; }
   /// T (K) and E_R^b of the solver (active cells current; ghosts as the solver leaves them).
   const radiation::FldState& state() const { return state_; }
-  const radiation::FldSolver& solver() const { return fld_; }
 
   /// Cell field rad_E (sum over bands of E_R^b); the gas writes T (gas_T).
   void write_snapshot(io::SnapshotWriter& out) const;

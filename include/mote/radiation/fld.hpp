@@ -3,9 +3,10 @@
 // and eq. 49 (for E_R^b in each band and cell), with
 //   F^b = -(c lambda^b / rho kappa_R^b) grad E_R^b          (eq. 41)
 // and the Kley (1989) limiter lambda^b (eq. 42-43), the coefficient capped at
-// c r (r the distance to the star; only cells of nearly uniform E reach the
-// cap, where lambda -> 1/3 and c / 3 rho kappa_R is unbounded however thin the
-// cell, and the flux there stays below c E). The diffusion coefficient
+// c r, r the distance to the star (a departure from eq. 41: the cap binds in
+// cells optically thin over r whose E varies on a scale longer than r; the
+// diffusion limit is untouched, and there the flux drops from ~c E to
+// c E r / (E / |grad E|)). The diffusion coefficient
 // and the Planck factors f^b are evaluated at t^n (time-lagged, as RBO24); the
 // divergence of F^b is the 9-point matrix of app. A, built from the mesh's
 // Wu et al. (2012) face coefficients (mesh::diffusion_coefficients, the same
