@@ -9,6 +9,7 @@ packages=(
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
   libgtest-dev libtomlplusplus-dev libbenchmark-dev
   python3 python3-h5py python3-numpy python3-matplotlib
+  paraview python3-paraview xvfb  # tests: ParaView's XDMF readers (pvbatch), rendering under xvfb-run
 )
 
 missing=()
