@@ -18,7 +18,7 @@ void SnapshotWriter::rectilinear_2d(const std::vector<double>& x_nodes, const st
   mesh_ = Mesh::Rectilinear;
   file_.write("/mesh/x_nodes", Block::whole({x_nodes.size()}), x_nodes.data());
   file_.write("/mesh/y_nodes", Block::whole({y_nodes.size()}), y_nodes.data());
-  // The same nodes as a structured mesh (see xy_nodes()): this rank's node rows.
+  // The same nodes as a structured mesh, as the XDMF descriptor gives them: this rank's node rows.
   const int node_rows = rows + (row_begin + rows == ny_ ? 1 : 0);
   std::vector<double> xy(static_cast<size_t>(node_rows) * (nx_ + 1) * 2);
   for (int a = 0; a < node_rows; ++a)

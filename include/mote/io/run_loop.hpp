@@ -7,7 +7,8 @@
 // name, and the run first saves its state in a checkpoint if it can. A
 // checkpoint is only written from a state that passed the non-finite check.
 // Each snapshot also rewrites snapshots.xmf, the run's snapshots as one XDMF
-// temporal collection (one animation in ParaView or VisIt). Its settings are the deck tables [run] and [output].
+// temporal collection (one animation in ParaView or VisIt).
+// Its settings are the deck tables [run] and [output].
 #pragma once
 
 #include <map>
