@@ -10,5 +10,6 @@ __version__ = "0.1.0"  # = python/pyproject.toml and project(mote VERSION)
 
 from .snapshot import Snapshot, read_snapshot, list_snapshots, last_snapshot
 from .history import read_history
+from .disc import gas_state
 
-__all__ = ["Snapshot", "read_snapshot", "list_snapshots", "last_snapshot", "read_history"]
+__all__ = ["Snapshot", "read_snapshot", "list_snapshots", "last_snapshot", "read_history", "gas_state"]
