@@ -5,7 +5,8 @@ problem executables (and their decks) and moteConfig.cmake there; the project
 in tests/install (my_pulse, a copy of gaussian_pulse with another name) is
 configured with find_package(mote) against that prefix alone, built with
 add_problem() and run for one step; the installed gaussian_pulse runs a step
-of its installed deck; find_package(mote 0.2) is refused (0.x: same minor
+of its installed deck and the installed check.py reads it (with the python/mote
+installed beside it); find_package(mote 0.2) is refused (0.x: same minor
 version only).
 
 usage: install_and_use.py CMAKE MOTE_BUILD_DIR WORKDIR [CCACHE]
@@ -38,7 +39,9 @@ timed("install", [cmake, "--install", mote_build, "--prefix", prefix])
 installed = ["include/mote/io/snapshot.hpp", "include/mote/core/kokkos_types.hpp", "lib/libmote.a",
              "lib/cmake/mote/moteConfig.cmake", "lib/cmake/mote/moteConfigVersion.cmake",
              "lib/cmake/mote/moteTargets.cmake", "lib/cmake/mote/MoteProblem.cmake",
-             "bin/gaussian_pulse", "bin/disc_pulse", "bin/sph_sod", "share/mote/problems/gaussian_pulse/gaussian_pulse.toml"]
+             "bin/gaussian_pulse", "bin/disc_pulse", "bin/sph_sod", "share/mote/problems/gaussian_pulse/gaussian_pulse.toml",
+             "share/mote/problems/gaussian_pulse/check.py", "share/mote/python/mote/__init__.py",
+             "share/mote/python/pyproject.toml"]
 missing = [f for f in installed if not os.path.exists(os.path.join(prefix, f))]
 checks.check(not missing, f"installed: {', '.join(installed)}" + (f" (missing: {missing})" if missing else ""))
 
@@ -68,6 +71,11 @@ checks.check(all(os.path.exists(os.path.join(out, f)) for f in ("snapshot_00001.
 p = timed("installed gaussian_pulse", [os.path.join(prefix, "bin", "gaussian_pulse"), os.path.join(prefix, "share/mote/problems/gaussian_pulse/gaussian_pulse.toml"),
          f"output.dir={os.path.join(work, 'installed_run')}", "run.max_steps=1", "run.progress_interval=0"], expect=None)
 checks.check(p.returncode == 0, f"the installed gaussian_pulse runs a step of its installed deck (exit {p.returncode})")
+p = run([sys.executable, os.path.join(prefix, "share/mote/problems/gaussian_pulse/check.py"), os.path.join(work, "installed_run"),
+         "--max-error", "1"], expect=None, cwd=work)
+checks.check(p.returncode == 0 and "L2_rel" in p.stdout,
+             f"the installed check.py reads that run with the installed python/mote (exit {p.returncode})" +
+             ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-2000:]}"))
 
 p = timed("configure 0.2", [cmake, "-S", here, "-B", os.path.join(work, "build_0.2"), "-G", "Ninja", f"-DCMAKE_PREFIX_PATH={prefix}",
          "-DMY_PROBLEMS_MOTE_VERSION=0.2"], expect=None)

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """ParaView renders every kind of mote output as what it is, with both XDMF
 readers: the last snapshot of each run of paraview_runs.py, coloured by a
-field on a white background under xvfb-run (GLX under Xvfb fails now and then:
-each render is tried up to 3 times). The coloured part of the frame is measured
+field on a white background under xvfb-run (Debian's ParaView renders through
+GLX only, `pvbatch --force-offscreen-rendering` without a display aborts; GLX
+under Xvfb fails now and then: each render is tried up to 3 times). The coloured part of the frame is measured
 (pixels differing from white):
 - grids: ResetCamera fits the bounds' sphere (radius r, half the diagonal) in
   the 30 degree view angle, so the frame spans H = 2 r / cos(15 deg) by

@@ -7,7 +7,7 @@
 // name, and the run first saves its state in a checkpoint if it can. A
 // checkpoint is only written from a state that passed the non-finite check.
 // Each snapshot also rewrites snapshots.xmf, the run's snapshots as one XDMF
-// temporal collection (one animation in ParaView or VisIt).
+// temporal collection (one animation in ParaView).
 // Its settings are the deck tables [run] and [output].
 #pragma once
 

@@ -82,7 +82,7 @@ class SnapshotWriter {
 };
 
 /// A temporal collection of snapshot <Grid> elements (SnapshotWriter::xdmf_grid),
-/// so that a whole run opens in ParaView or VisIt as one animation.
+/// so that a whole run opens in ParaView as one animation.
 std::string xdmf_time_series(const std::vector<std::string>& grids);
 /// The <Grid> element of a snapshot's XDMF text (as written by xdmf()), or "".
 std::string xdmf_grid_of(const std::string& xdmf_text);
