@@ -1,12 +1,23 @@
-# add_problem(<name> [SOURCES extra.cpp ...])
-# Builds problems/<name>/<name>.cpp into the executable bin/<name>, linked to
-# libmote, and adds it to the generated deck reference (target deck_reference).
+# add_problem(<name> [SOURCES extra.cpp ...] [NO_INSTALL])
+# Builds <name>.cpp of the current source directory (problems/<name>/ in mote)
+# into the executable <build>/bin/<name>, linked to mote::mote, installs it into
+# <prefix>/bin unless NO_INSTALL, and adds it to the generated deck reference
+# (mote_add_deck_reference(): target deck_reference). The same function is
+# installed with mote's CMake package, for users' own problems:
+#   find_package(mote REQUIRED)
+#   add_problem(my_problem)
+include_guard(GLOBAL)
+include(GNUInstallDirs)
+
 function(add_problem name)
-  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL" "" "SOURCES" ${ARGN})
   add_executable(${name} ${name}.cpp ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE mote::mote)
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/bin")
   set_property(GLOBAL APPEND PROPERTY MOTE_PROBLEMS ${name})
+  if(NOT ARG_NO_INSTALL)
+    install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
 endfunction()
 
 # deck_reference: build/docs/deck_reference.md from every problem's declared keys.

@@ -29,21 +29,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.disc import gas_state  # noqa: E402
 from mote.verdict import Verdict  # noqa: E402
-
-
-def gas_state(snap):
-    """Gas arrays of a snapshot plus the grid: R_edges, tan_te (tan theta edges) from the
-    structured mesh nodes (x = R^e, y = R^e tan theta^e), R_c, theta_c, theta_edges."""
-    out = dict(snap.data)
-    out.update(snap.fields)
-    x, y = np.asarray(snap.x_nodes), np.asarray(snap.y_nodes)
-    out["R_edges"] = x[:, 0]
-    out["tan_te"] = y[0, :] / x[0, :]
-    out["theta_edges"] = np.arctan(out["tan_te"])
-    out["R_c"] = snap.data["R_centres"]
-    out["theta_c"] = snap.data["theta_centres"]
-    return out
 
 
 def analytic(snap, R=None):

@@ -6,7 +6,10 @@
     hist = mote.read_history("runs/gaussian_pulse/history.txt")
     hist["time"], hist["mass"]
 """
+__version__ = "0.1.0"  # = python/pyproject.toml and project(mote VERSION)
+
 from .snapshot import Snapshot, read_snapshot, list_snapshots, last_snapshot
 from .history import read_history
+from .disc import gas_state
 
-__all__ = ["Snapshot", "read_snapshot", "list_snapshots", "last_snapshot", "read_history"]
+__all__ = ["Snapshot", "read_snapshot", "list_snapshots", "last_snapshot", "read_history", "gas_state"]

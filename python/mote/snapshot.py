@@ -14,7 +14,8 @@ class Snapshot:
     """One snapshot: root attributes, mesh coordinates and fields as numpy arrays.
 
     Attributes: path, time, step, problem, deck (resolved TOML text), units
-    (dict: system, length_cm, mass_g, time_s), x_nodes, y_nodes, x, y (cell
+    (dict: system, length_cm, mass_g, time_s), x_nodes, y_nodes, xy_nodes (the
+    nodes as (ny + 1, nx + 1, 2), as the XDMF descriptor gives them), x, y (cell
     centres), fields (name -> array), data (other arrays, name -> array), field_units (name -> (label, to_cgs)).
     """
 
@@ -34,6 +35,7 @@ class Snapshot:
             }
             self.x_nodes = f["mesh/x_nodes"][...] if "mesh/x_nodes" in f else None
             self.y_nodes = f["mesh/y_nodes"][...] if "mesh/y_nodes" in f else None
+            self.xy_nodes = f["mesh/xy_nodes"][...] if "mesh/xy_nodes" in f else None
             self.fields = {}
             self.field_units = {}
             if "fields" in f:

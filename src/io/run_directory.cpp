@@ -113,7 +113,7 @@ std::vector<fs::path> run_files(const std::string& dir) {
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind(kRunIdFileName, 0) == 0 || name.rfind("history.txt", 0) == 0 || name.rfind("snapshot_", 0) == 0 ||
-        name.rfind("checkpoint_", 0) == 0)
+        name.rfind(kTimeSeriesFileName, 0) == 0 || name.rfind("checkpoint_", 0) == 0)
       found.push_back(entry.path());
   }
   std::sort(found.begin(), found.end());

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "mote/core/log.hpp"
@@ -213,10 +215,34 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
     sim.write_snapshot(writer);
     xdmf = writer.xdmf(std::filesystem::path(path).filename().string(), s.time);
   });
-  if (!xdmf.empty())
+  if (!xdmf.empty()) {
     write_text_on_root(numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "xmf"), xdmf, comm_);
+    update_time_series(s.snapshot_count, xdmf);
+  }
   logging::info("  snapshot ", path, " (t = ", logging::format("%.6g", s.time), ")");
   s.snapshot_count += 1;
+}
+
+void RunLoop::update_time_series(long long index, const std::string& xdmf) {
+  std::string text;
+  if (comm_.is_root()) {
+    if (!series_loaded_) {  // a restart: the snapshots written before it
+      for (const auto& f : numbered_files(settings_.output_dir, "snapshot", "xmf")) {
+        if (index_of(f) >= index) continue;  // replaced by this run
+        std::ifstream in(f);
+        std::stringstream buffer;
+        buffer << in.rdbuf();
+        if (std::string grid = xdmf_grid_of(buffer.str()); !grid.empty()) series_[index_of(f)] = std::move(grid);
+      }
+      series_loaded_ = true;
+    }
+    series_.erase(series_.lower_bound(index), series_.end());
+    series_[index] = xdmf_grid_of(xdmf);
+    std::vector<std::string> grids;
+    for (const auto& g : series_) grids.push_back(g.second);
+    text = xdmf_time_series(grids);
+  }
+  write_text_on_root((std::filesystem::path(settings_.output_dir) / kTimeSeriesFileName).string(), text, comm_);
 }
 
 void RunLoop::write_checkpoint(Simulation& sim, State& s) {

@@ -31,4 +31,6 @@ d3 = np.max(np.abs(a.fields["dust_density"] - c.fields["dust_density"])) / scale
 checks.check(d2 <= 1e-12, f"2 ranks match 1 rank: max relative difference {d2:.2e} <= 1e-12")
 checks.check(d3 <= 1e-12, f"2-rank checkpoint restarted on 1 rank: {d3:.2e} <= 1e-12")
 checks.check(np.array_equal(a.x_nodes, b.x_nodes) and a.x_nodes.shape == (42, 33), "grid nodes written collectively")
+checks.check(np.array_equal(a.xy_nodes, b.xy_nodes) and
+             np.array_equal(a.xy_nodes, np.stack([a.x_nodes, a.y_nodes], axis=-1)), "XDMF nodes /mesh/xy_nodes written collectively")
 sys.exit(checks.finish())

@@ -164,7 +164,8 @@ def full_disk_history():
 
 
 def dev_full():
-    """The history's and an XDMF file's temporaries on /dev/full: exit 5 with ENOSPC, nothing half-written."""
+    """The history's, an XDMF file's and snapshots.xmf's temporaries on /dev/full: exit 5 with ENOSPC, nothing
+    half-written."""
     d = fresh_run("dev_full")
     os.symlink("/dev/full", os.path.join(d, "history.txt.tmp"))
     case("history on /dev/full", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], IO_ERROR,
@@ -178,6 +179,19 @@ def dev_full():
          unchanged=d, skip=("history.txt",))
     checks.check(not os.path.exists(os.path.join(d, xmf)), "XDMF on /dev/full: no .xmf file")
     checks.check(len(files(d, "checkpoint_")) == len(before) + 1, "XDMF on /dev/full: a checkpoint was written")
+    d = fresh_run("dev_full_series")
+    series = os.path.join(d, "snapshots.xmf")
+    with open(series, "rb") as f:
+        old = f.read()
+    before = files(d, "checkpoint_")
+    os.symlink("/dev/full", series + ".tmp")
+    case("time series on /dev/full", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                      "output.checkpoint_every=0"], IO_ERROR,
+         [f"cannot write '{series}.tmp': No space left on device", "writing a checkpoint"])
+    with open(series, "rb") as f:
+        checks.check(f.read() == old, "time series on /dev/full: snapshots.xmf keeps its bytes")
+    checks.check(not os.path.lexists(series + ".tmp"), "time series on /dev/full: temporary removed")
+    checks.check(len(files(d, "checkpoint_")) == len(before) + 1, "time series on /dev/full: a checkpoint was written")
 
 
 def small_tmpfs():

@@ -6,6 +6,9 @@ usage: mpi_equivalence.py EXE WORKDIR MPIEXEC [ARGS ...]
 import os
 import shutil
 import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
 
 from harness import Checks, run
 import mote
@@ -26,4 +29,12 @@ checks.check(a.step == b.step == c.step, f"same number of steps ({a.step}, {b.st
 for name in a.fields:
     checks.check(a.fields[name].tobytes() == b.fields[name].tobytes(), f"{name}: 2 ranks bit-identical to 1 rank")
     checks.check(a.fields[name].tobytes() == c.fields[name].tobytes(), f"{name}: 2-rank checkpoint restarted on 1 rank identical")
+nodes = np.stack(np.meshgrid(a.x_nodes, a.y_nodes), axis=-1)
+checks.check(np.array_equal(a.xy_nodes, nodes) and np.array_equal(b.xy_nodes, nodes),
+             "XDMF nodes /mesh/xy_nodes = (x_nodes, y_nodes) on 1 and 2 ranks")
+for d in (one, two, mixed):
+    root = ET.parse(os.path.join(d, "snapshots.xmf")).getroot()
+    refs = [g.find("Geometry/DataItem").text.split(":")[0] for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
+    checks.check(refs == [os.path.basename(s) for s in mote.list_snapshots(d)],
+                 f"{os.path.basename(d)}: snapshots.xmf lists its {len(refs)} snapshots in order")
 sys.exit(checks.finish())

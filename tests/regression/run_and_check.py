@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """End to end: the default gaussian_pulse deck runs, prints progress, writes
-HDF5 snapshots with XDMF descriptors and a history, and check.py accepts the
+HDF5 snapshots with XDMF descriptors, the snapshots.xmf time series and a history, and check.py accepts the
 result (L2_rel <= 1e-3) and writes its PNG.
 
 usage: run_and_check.py EXE WORKDIR
@@ -28,8 +28,12 @@ for s in snaps:
     if ok:
         root = ET.parse(xmf).getroot()
         items = [d.text for d in root.iter("DataItem")]
-        ok = all(t.split(":")[0] == os.path.basename(s) for t in items) and len(items) == 4
+        ok = all(t.split(":")[0] == os.path.basename(s) for t in items) and len(items) == 3
     checks.check(ok, f"{os.path.basename(s)}: XDMF descriptor references its HDF5 datasets")
+series = ET.parse(os.path.join(work, "snapshots.xmf")).getroot()
+grids = [g for g in series.iter("Grid") if g.get("GridType") == "Uniform"]
+refs = [g.find("Geometry/DataItem").text.split(":")[0] for g in grids]
+checks.check(refs == [os.path.basename(s) for s in snaps], f"snapshots.xmf: a temporal collection of the {len(snaps)} snapshots")
 hist = mote.read_history(os.path.join(work, "history.txt"))
 drift = abs(hist["mass"][-1] - hist["mass"][0]) / hist["mass"][0]
 checks.check(drift < 1e-13, f"mass conserved: relative drift {drift:.2e} < 1e-13")

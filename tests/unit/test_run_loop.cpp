@@ -120,6 +120,41 @@ TEST_F(RunLoopTest, RestartIsBitIdentical) {
   EXPECT_EQ(resumed.y, y_full);  // bit-identical
 }
 
+/// The snapshot files referenced by snapshots.xmf, in order, and the times of its grids.
+std::pair<std::vector<std::string>, std::vector<double>> time_series(const std::string& dir) {
+  std::ifstream in(fs::path(dir) / io::kTimeSeriesFileName);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  std::vector<std::string> files;
+  std::vector<double> times;
+  for (size_t at = s.find("<Time Value=\""); at != std::string::npos; at = s.find("<Time Value=\"", at + 1)) {
+    times.push_back(std::stod(s.substr(at + 13)));
+    const size_t geometry = s.find("/mesh/xy_nodes", at);
+    const size_t begin = s.rfind('>', geometry) + 1;
+    files.push_back(s.substr(begin, s.find(':', begin) - begin));
+  }
+  return {files, times};
+}
+
+TEST_F(RunLoopTest, TimeSeriesListsEverySnapshotAcrossARestart) {
+  Decay first;
+  ASSERT_EQ(run(first, {"run.max_steps=13"}), core::kExitStepLimit);
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  Decay resumed;
+  ASSERT_EQ(run(resumed, {}, *checkpoint), core::kExitFinished);
+  const auto [files, times] = time_series(dir_);
+  const auto snapshots = io::numbered_files(dir_, "snapshot", "h5");  // newest first
+  ASSERT_EQ(files.size(), snapshots.size());
+  ASSERT_GE(files.size(), 5u);
+  for (size_t k = 0; k < files.size(); ++k) {
+    EXPECT_EQ(files[k], fs::path(snapshots[snapshots.size() - 1 - k]).filename().string());
+    EXPECT_EQ(times[k], snapshot_time(static_cast<int>(k)));
+    if (k > 0) EXPECT_GT(times[k], times[k - 1]);
+  }
+}
+
 TEST_F(RunLoopTest, NonFiniteStopsAndKeepsLastGoodCheckpoint) {
   Decay sim;
   sim.poison_step = 12;

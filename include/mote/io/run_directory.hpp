@@ -53,5 +53,7 @@ class RunDirectory {
 /// Name of the lock file and of the run-id file inside an output directory.
 inline constexpr const char* kLockFileName = "run.lock";
 inline constexpr const char* kRunIdFileName = "run_id";
+/// The run's snapshots as one XDMF temporal collection (rewritten at each snapshot).
+inline constexpr const char* kTimeSeriesFileName = "snapshots.xmf";
 
 }  // namespace mote::io

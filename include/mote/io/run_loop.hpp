@@ -6,9 +6,12 @@
 // checked: a failed one (core::IOError, exit 5) leaves no file under its final
 // name, and the run first saves its state in a checkpoint if it can. A
 // checkpoint is only written from a state that passed the non-finite check.
+// Each snapshot also rewrites snapshots.xmf, the run's snapshots as one XDMF
+// temporal collection (one animation in ParaView).
 // Its settings are the deck tables [run] and [output].
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 
@@ -66,6 +69,8 @@ class RunLoop {
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_checkpoint(Simulation& sim, State& s);
+  /// Adds snapshot `index` (its XDMF text) to snapshots.xmf, dropping any later ones.
+  void update_time_series(long long index, const std::string& xdmf);
   /// After a failed write: a checkpoint of the current state, unless it was the checkpoint that
   /// failed or the state is not finite; its own failure is only reported.
   void checkpoint_after_write_error(Simulation& sim, State& s);
@@ -88,6 +93,10 @@ class RunLoop {
   std::string run_id_;           // of the run that owns output.dir, set by run()
   std::string last_checkpoint_;  // written or restarted from by this run; "" if none
   bool checkpoint_failed_ = false;
+  // <Grid> elements of the snapshots in snapshots.xmf by snapshot number (rank 0);
+  // loaded from the directory's snapshot_*.xmf at the first snapshot (a restart).
+  std::map<long long, std::string> series_;
+  bool series_loaded_ = false;
 };
 
 }  // namespace mote::io

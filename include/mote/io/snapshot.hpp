@@ -4,6 +4,9 @@
 //                     unit_system, unit_length_cm, unit_mass_g, unit_time_s
 //   /mesh/x_nodes, /mesh/y_nodes        node coordinates: 1D for a rectilinear mesh,
 //                                       2D (rows + 1, cols + 1) for a structured one
+//   /mesh/xy_nodes    (rows + 1, cols + 1, 2): the nodes of either mesh interleaved, which
+//                     the XDMF descriptor references (a 2DSMesh with XY geometry)
+//   /mesh/vertices    (n) int64 0..n-1: the particles' vertex cells in the XDMF descriptor
 //   /fields/<name>    cell data, shape (ny, nx); attributes unit (text), to_cgs (factor)
 //   /particles/position (n, 3) and /particles/<name> (n) or (n, 3): particle data
 //   /data/<name>      other arrays (grain-size grids, distributions), same attributes
@@ -55,13 +58,16 @@ class SnapshotWriter {
   void array(const std::string& name, const Block& block, const double* data, const FieldUnit& unit);
 
   /// XDMF text describing the mesh and fields of this snapshot; `h5_name` is
-  /// the snapshot's file name relative to the .xmf file.
+  /// the snapshot's file name relative to the .xmf file. Empty without a mesh.
   std::string xdmf(const std::string& h5_name, double time) const;
+  /// The snapshot's <Grid> element alone (what xdmf() wraps), for a time series.
+  std::string xdmf_grid(const std::string& h5_name, double time) const;
 
   H5File& file() { return file_; }
 
  private:
   enum class Mesh { None, Rectilinear, Structured, Particles };
+  void write_xy_nodes(const double* xy, int node_rows);
   H5File& file_;
   Mesh mesh_ = Mesh::None;
   int nx_ = 0, ny_ = 0, row_begin_ = 0, rows_ = 0;  // cells: ny_ rows of nx_ columns
@@ -74,5 +80,11 @@ class SnapshotWriter {
   };
   std::vector<ParticleField> particle_fields_;
 };
+
+/// A temporal collection of snapshot <Grid> elements (SnapshotWriter::xdmf_grid),
+/// so that a whole run opens in ParaView as one animation.
+std::string xdmf_time_series(const std::vector<std::string>& grids);
+/// The <Grid> element of a snapshot's XDMF text (as written by xdmf()), or "".
+std::string xdmf_grid_of(const std::string& xdmf_text);
 
 }  // namespace mote::io
