@@ -60,7 +60,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, in
     ds.sizes.clear();
     for (int j = 0; j < nspecies; ++j) ds.sizes.push_back(1e-4 * (1.0 + j));
     ds.eps = {0.01 / nspecies};
-    sys->set_dust(ds);
+    add_one_fluid_dust(*sys, ds);
   }
   sys->initialise();
   return sys;

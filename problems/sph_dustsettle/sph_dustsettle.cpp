@@ -40,7 +40,7 @@ class SettleSimulation final : public sph::SphSimulation {
     out.push_back({"dust_projected", d.dust_projected});                   // removed by the S-variable projection
     // Particles where eps T_s exceeds the Courant time-step (PL15 eq. 18): the terminal-velocity
     // approximation fails there (the low-density gas above the column).
-    out.push_back({"tva_violations", static_cast<double>(system_->dust()->tva_violations())});
+    out.push_back({"tva_violations", static_cast<double>(system_->module<sph::OneFluidDust>()->tva_violations())});
     return out;
   }
 };
@@ -66,6 +66,7 @@ void declare(core::DeckSchema& s) {
   sph::declare_settings(s);
   sph::DustSettings::declare(s);
   s.rule(io::requires_table("sph_dustsettle", "dust"));
+  s.rule(sph::requires_dust_method("sph_dustsettle", {"diffusion", "multigrain"}));
   s.rule(io::requires_choice("sph_dustsettle", "dust.drag", "epstein"));
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
   s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
@@ -128,7 +129,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
     col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim), relax_progress(c.relax_time, d));
   }
   auto sys = col.make_system();
-  sys->set_dust(ds);
+  add_one_fluid_dust(*sys, ds);
   logging::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
                 ", mid-plane t_s Omega0 of the largest grain = ",
                 sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());

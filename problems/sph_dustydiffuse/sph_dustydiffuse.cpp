@@ -21,8 +21,10 @@ using namespace mote;
 class DiffuseSimulation final : public sph::SphSimulation {
  public:
   using SphSimulation::SphSimulation;
-  double max_dt() override { return system_->dust()->timestep(system_->particles(), system_->config()); }
-  void advance(double, double dt) override { system_->dust()->advance_dust_only(*system_, dt); }
+  double max_dt() override {
+    return system_->module<sph::OneFluidDust>()->timestep(system_->particles(), system_->config());
+  }
+  void advance(double, double dt) override { sph::advance_dust_only(*system_, dt); }
 };
 
 void declare(core::DeckSchema& s) {

@@ -45,7 +45,7 @@ Rate energy_rate(DustVariable var, DustDiscretisation disc, DustEnergy en, DustF
   sys->initialise();
   sys->advance_to(0.05);
   Particles& p = sys->particles();
-  OneFluidDust& dust = *sys->dust();
+  OneFluidDust& dust = *sys->module<OneFluidDust>();
   Kokkos::deep_copy(dust.var_pred, dust.var);
   sys->compute_accelerations(p.v, p.u);
   const auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.m);
