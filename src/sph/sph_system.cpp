@@ -17,10 +17,10 @@ namespace mote::sph {
 
 namespace {
 
-/// Kick (half step), drift, predict v and u to the end of the step, and h
-/// from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
+/// Drift after the first half kick, predict v and u to the end of the step,
+/// and h from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
 /// starting guess of the h-rho iteration.
-void kick_drift(const Particles& p, bool energy, Real dt) {
+void drift(const Particles& p, bool energy, Real dt) {
   const int dim = p.dim;
   const auto x = p.x;
   const auto v = p.v;
@@ -33,24 +33,17 @@ void kick_drift(const Particles& p, bool energy, Real dt) {
   const auto divv = p.divv;
   const Real hdt = 0.5 * dt;
   par_for(
-      "sph::kick_drift", 0, p.n, KOKKOS_LAMBDA(int i) {
+      "sph::drift", 0, p.n, KOKKOS_LAMBDA(int i) {
         for (int d = 0; d < dim; ++d) {
-          const Real vh = v(i, d) + hdt * a(i, d);
-          v(i, d) = vh;
-          x(i, d) += dt * vh;  // wrapped into the box at the next list rebuild
-          vpred(i, d) = vh + hdt * a(i, d);
+          x(i, d) += dt * v(i, d);  // wrapped into the box at the next list rebuild
+          vpred(i, d) = v(i, d) + hdt * a(i, d);
         }
         h(i) *= math::exp(dt * divv(i) / dim);
-        if (energy) {
-          u(i) += hdt * dudt(i);
-          upred(i) = u(i) + hdt * dudt(i);
-        } else {
-          upred(i) = u(i);
-        }
+        upred(i) = energy ? u(i) + hdt * dudt(i) : u(i);
       });
 }
 
-/// Second kick with the new accelerations.
+/// Half kick with the current accelerations (before the drift and after the new forces).
 void kick(const Particles& p, bool energy, Real hdt) {
   const int dim = p.dim;
   const auto v = p.v;
@@ -78,6 +71,9 @@ void SphSystem::set_particles(const ParticleSetup& s) {
   if (n <= 0 || static_cast<int>(s.x.size()) != n * dim || static_cast<int>(s.h.size()) != n) {
     throw std::invalid_argument("sph: particle set-up needs x (n*dim), m (n) and h (n)");
   }
+  const auto sized = [n](std::size_t size, int per) { return size == 0 || size == static_cast<std::size_t>(n) * per; };
+  if (!sized(s.v.size(), dim) || !sized(s.u.size(), 1) || !sized(s.type.size(), 1))
+    throw std::invalid_argument("sph: particle set-up v (n*dim), u (n) and type (n) must be empty or complete");
   p_.allocate(n, dim);
   auto x = Kokkos::create_mirror_view(p_.x);
   auto v = Kokkos::create_mirror_view(p_.v);
@@ -215,7 +211,9 @@ Real SphSystem::step() {
   const Real hdt = 0.5 * dt;
   const bool energy = cfg_.eos == EosType::Adiabatic;
   for (const auto& m : modules_) m->begin_step(*this, dt);
-  kick_drift(p_, energy, dt);
+  kick(p_, energy, hdt);
+  for (const auto& m : modules_) m->after_first_kick(*this, hdt);
+  drift(p_, energy, dt);
   for (const auto& m : modules_) m->after_drift(*this, hdt);
   time_ += dt;
   // A neighbour rebuild in here reorders the particles (new Views).

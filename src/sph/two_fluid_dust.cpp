@@ -293,7 +293,12 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
 
 void TwoFluidDust::begin_step(SphSystem& sys, Real) { Kokkos::deep_copy(v_start, sys.particles().v); }
 
-void TwoFluidDust::after_kick(SphSystem& sys, Real half_dt) { apply_drag(sys, 2.0 * half_dt); }
+void TwoFluidDust::after_first_kick(SphSystem& sys, Real half_dt) {
+  apply_drag(sys, half_dt);
+  Kokkos::deep_copy(v_start, sys.particles().v);  // the start of the second half
+}
+
+void TwoFluidDust::after_kick(SphSystem& sys, Real half_dt) { apply_drag(sys, half_dt); }
 
 void TwoFluidDust::apply_drag(SphSystem& sys, Real dt) {
   using namespace two_fluid_detail;
@@ -395,11 +400,35 @@ std::vector<io::Diagnostic> TwoFluidDust::history(const SphSystem& sys) const {
           {"drag_heating", heating_}};
 }
 
-void TwoFluidDust::save_state(const SphSystem&, io::H5File& f) const {
+namespace {
+
+/// The density and sound speed of the last force evaluation: the drag after
+/// the first half kick of the next step uses them (the engine recomputes them
+/// only after the drift), so a restart needs them to continue bit for bit.
+const char* const kSavedFields[] = {"/state/two_fluid_rho", "/state/two_fluid_cs"};
+
+}  // namespace
+
+void TwoFluidDust::save_state(const SphSystem& sys, io::H5File& f) const {
+  const Particles& p = sys.particles();
+  const io::Block block = io::Block::whole({static_cast<hsize_t>(p.n)});
+  const RealView1 fields[] = {p.rho, p.cs};
+  for (int k = 0; k < 2; ++k) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), fields[k]);
+    f.write(kSavedFields[k], block, h.data());
+  }
   f.write("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating_);
 }
 
-void TwoFluidDust::load_state(SphSystem&, const io::H5File& f) {
+void TwoFluidDust::load_state(SphSystem& sys, const io::H5File& f) {
+  const Particles& p = sys.particles();
+  const io::Block block = io::Block::whole({static_cast<hsize_t>(p.n)});
+  const RealView1 fields[] = {p.rho, p.cs};
+  for (int k = 0; k < 2; ++k) {
+    auto h = Kokkos::create_mirror_view(fields[k]);
+    f.read(kSavedFields[k], block, h.data());
+    Kokkos::deep_copy(fields[k], h);
+  }
   f.read("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating_);
 }
 

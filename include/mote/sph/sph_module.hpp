@@ -4,7 +4,10 @@
 // SphSystem::add_module, the way the disc driver takes its sub-solvers. The
 // engine calls every module, in registration order, at fixed points:
 //   initialise      after the first density solve (and on a running system);
-//   begin_step      before the first half kick and the drift;
+//   begin_step      before the first half kick;
+//   after_first_kick after the first half kick, before the drift (the first
+//                   half of an operator-split update, so that the drift moves
+//                   the particles with the velocity it leaves);
 //   after_drift     after the drift, before the forces at the new positions;
 //   compute_forces  the module's part of the force loop (or all of it, when
 //                   replaces_gas_forces(): the one-fluid mixture's EOS and forces);
@@ -48,6 +51,7 @@ class SphModule {
 
   virtual void initialise(SphSystem&) {}
   virtual void begin_step(SphSystem&, Real /*dt*/) {}
+  virtual void after_first_kick(SphSystem&, Real /*half_dt*/) {}
   virtual void after_drift(SphSystem&, Real /*half_dt*/) {}
   /// Forces for the velocities vel and energies u (the particle members p.v/p.vpred, p.u/p.upred).
   virtual void compute_forces(SphSystem&, const RealView2& /*vel*/, const RealView1& /*u*/) {}
