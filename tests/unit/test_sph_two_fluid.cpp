@@ -58,13 +58,19 @@ DustVelocity dust_velocity(const SphSystem& sys) {
   return out;
 }
 
+Real fixed_box_error(const DustyBox& box, const DustSettings& settings, Real ts, Real dt, int steps);
+
 /// Largest relative error of the dust velocity against LAB15 eq. 31 over
 /// `steps` steps of dt with the particles held fixed (LAB15 sec. 3 hold the
 /// densities constant in their 1D runs): each step is the non-drag update
 /// (eq. 2-3: the dust's acceleration; the uniform gas feels no force) and the
 /// drag update of the module.
 Real fixed_box_error(const DustyBox& box, Real ts, Real dt, int steps, TwoFluidDrag scheme) {
-  auto sys = make_dustybox(box, isothermal(box.dim), two_fluid(ts, scheme));
+  return fixed_box_error(box, two_fluid(ts, scheme), ts, dt, steps);
+}
+
+Real fixed_box_error(const DustyBox& box, const DustSettings& settings, Real ts, Real dt, int steps) {
+  auto sys = make_dustybox(box, isothermal(box.dim), settings);
   sys->initialise();
   auto& dust = *sys->module<TwoFluidDust>();
   const Particles& p = sys->particles();
@@ -124,6 +130,36 @@ TEST(TwoFluidDust, OriginalSchemeOverDragsAtLongTimeSteps) {
     if (ratio >= 10.0) EXPECT_GT(err, 0.3);  // eq. 8: v -> a dt e^-10 / (1 - e^-10), not t_s a
   }
   EXPECT_LE(fixed_box_error(box, 0.1, 1.0, 40, TwoFluidDrag::Improved), 1e-3);
+}
+
+// The other drag laws of the dust module: constant K, t_s = rho_D rho_G / (K rho),
+// and Epstein, t_s = rho_grain s / (rho v_th), with the lattice's SPH densities.
+TEST(TwoFluidDust, ConstantKAndEpsteinDragFollowEq31) {
+  DustyBox box;
+  box.eps = 0.3;
+  auto probe = make_dustybox(box, isothermal(1), two_fluid(0.1));
+  probe->initialise();
+  const auto rho = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), probe->particles().rho);
+  const auto type = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), probe->particles().type);
+  Real rho_g = 0.0, rho_d = 0.0;  // uniform on each lattice
+  for (int i = 0; i < probe->particles().n; ++i) (type(i) == kGas ? rho_g : rho_d) = rho(i);
+  DustSettings k = two_fluid(0.1);
+  k.drag = DragLaw::ConstantK;
+  k.k_drag = {4.0};
+  const Real ts_k = rho_d * rho_g / (4.0 * (rho_d + rho_g));
+  DustSettings ep = two_fluid(0.1);
+  ep.drag = DragLaw::Epstein;
+  ep.sizes = {0.05};
+  ep.rho_grain = 3.0;
+  const Real ts_ep = ts_epstein(3.0, 0.05, rho_d + rho_g, 1.0, 1.0);
+  for (const Real ratio : {0.1, 10.0, 1000.0}) {
+    const Real ek = fixed_box_error(box, k, ts_k, ratio * ts_k, 20);
+    const Real ee = fixed_box_error(box, ep, ts_ep, ratio * ts_ep, 20);
+    std::printf("constant K (t_s %.4g), Epstein (t_s %.4g), dt/t_s = %g: errors %.3e, %.3e\n", ts_k, ts_ep, ratio, ek,
+                ee);
+    EXPECT_LE(ek, 1e-3);
+    EXPECT_LE(ee, 1e-3);
+  }
 }
 
 // B1 and B2 through the engine's steps, in the stiff regime: no drag

@@ -74,8 +74,8 @@ class TwoFluidDust : public SphModule {
   void load_state(SphSystem& sys, const io::H5File& f) override;
 
   const DustSettings& settings() const { return s_; }
-  /// Kinetic energy the drag has turned into gas heat since the start (sum of eq. 29 times m).
-  Real drag_heating() const { return heating_; }
+  /// Kinetic energy the drag has turned into gas heat since the start (sum of eq. 29 times m; read from the device).
+  Real drag_heating() const;
   /// Applies the drag of a (sub-)step dt to the current velocities (and u,
   /// adiabatic gas), with a_DG from the change since v_start; public for tests
   /// that hold the particles fixed.
@@ -83,14 +83,14 @@ class TwoFluidDust : public SphModule {
 
   /// Per-particle scratch, public only because nvcc's extended lambdas may not
   /// live in private member functions.
-  RealView2 v_start, dv;         ///< velocity at the start of the step; drag change (n x dim)
-  RealView2 tinv;                ///< T_i^-1 of the dust (n x 9, row-major 3 x 3), see above
-  RealView1 du;                  ///< drag heating of the gas
-  RealView1 kdrag, size, tstop;  ///< per species
+  RealView2 v_start, dv;                               ///< velocity at the start of the step; drag change (n x dim)
+  RealView2 tinv;                                      ///< T_i^-1 of the dust (n x 9, row-major 3 x 3), see above
+  RealView1 du;                                        ///< drag heating of the gas
+  RealView1 kdrag, size, tstop;                        ///< per species
+  Kokkos::View<Real, MemSpace> heat_step, heat_total;  ///< drag heating of the last update and since the start
 
  private:
   DustSettings s_;
-  Real heating_ = 0.0;
 };
 
 /// Registers the two-fluid dust on sys (after set_particles(), before initialise()).
