@@ -28,9 +28,9 @@
 #include "mote/sph/density.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/forces.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/settling_column.hpp"
+#include "mote/setups/settling_column.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

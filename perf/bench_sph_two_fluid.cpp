@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "bench_main.hpp"
-#include "mote/sph/dustybox.hpp"
+#include "mote/setups/dustybox.hpp"
 #include "mote/sph/two_fluid_dust.hpp"
 
 namespace {

@@ -18,9 +18,9 @@
 #include "mote/core/log.hpp"
 #include "mote/core/timers.hpp"
 #include "mote/io/problem_main.hpp"
+#include "mote/setups/settling_column.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/settling_column.hpp"
-#include "mote/sph/sph_settings.hpp"
 #include "mote/sph/sph_simulation.hpp"
 #include "mote/sph/two_fluid_dust.hpp"
 
@@ -68,10 +68,7 @@ std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const co
 }
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
-  sph::DustSettings::declare(s);
-  s.rule(io::requires_table("sph_dustsettle", "dust"));
-  s.rule(sph::requires_dust_method("sph_dustsettle", {"diffusion", "multigrain", "two-fluid"}));
+  sph::declare_sph_problem(s, "sph_dustsettle", {"", {"diffusion", "multigrain", "two-fluid"}, true});
   s.rule(io::requires_choice("sph_dustsettle", "dust.drag", "epstein"));
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
   s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
@@ -107,15 +104,15 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_dustsettle: the SPH engine runs on one MPI rank");
-  sph::DustSettings ds = sph::DustSettings::from_deck(d);
+  const int dim = static_cast<int>(d.integer("settle.dim"));
+  auto [cfg, ds] = sph::start_sph_problem(ctx, "sph_dustsettle", dim);
   if (d.string("settle.grain_units") == "cgs") {
     for (auto& s : ds.sizes) s /= ctx.units.length;
     ds.rho_grain /= ctx.units.density();
   }
   sph::SettlingColumn c;
   c.nx = static_cast<int>(d.integer("settle.nx"));
-  c.dim = static_cast<int>(d.integer("settle.dim"));
+  c.dim = dim;
   c.width = d.real("settle.width");
   c.z_max = d.real("settle.zmax");
   c.rho0 = d.real("settle.rho0");
@@ -131,7 +128,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   sph::RelaxedColumn col;
   {
     core::ScopedTimer t(ctx.timers, "relax");
-    col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim), relax_progress(c.relax_time, d));
+    col = sph::relax_settling_column(c, cfg, relax_progress(c.relax_time, d));
   }
   std::unique_ptr<sph::SphSystem> sys;
   if (ds.method == sph::DustMethod::TwoFluid) {

@@ -10,8 +10,8 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
-#include "mote/sph/dustybox.hpp"
-#include "mote/sph/sph_settings.hpp"
+#include "mote/setups/dustybox.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {
@@ -19,10 +19,7 @@ namespace {
 using namespace mote;
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
-  sph::DustSettings::declare(s);
-  s.rule(io::requires_table("sph_dustybox", "dust"));
-  s.rule(sph::requires_dust_method("sph_dustybox", {"two-fluid"}));
+  sph::declare_sph_problem(s, "sph_dustybox", {"", {"two-fluid"}, true});
   s.rule(io::requires_choice("sph_dustybox", "dust.drag", "constant_ts"));
   s.rule([](const core::Deck& d, core::DeckCheck& check) {
     if (d.has_table("dust") && d.integer("dust.species") != 1)
@@ -38,15 +35,13 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_dustybox: the SPH engine runs on one MPI rank");
   sph::DustyBox box;
   box.dim = static_cast<int>(d.integer("dustybox.dim"));
   box.n = static_cast<int>(d.integer("dustybox.n"));
   box.eps = d.real("dustybox.eps");
   box.v_dust = d.real("dustybox.v_dust");
   box.a_dust = d.real("dustybox.a_dust");
-  const auto cfg = sph::config_from_deck(d, box.dim);
-  const auto ds = sph::DustSettings::from_deck(d);
+  const auto [cfg, ds] = sph::start_sph_problem(ctx, "sph_dustybox", box.dim);
   const double ts = ds.species_value(ds.stopping_time, 0);
   logging::info("sph_dustybox: ", box.dim, "D, 2 x ", box.n, "^", box.dim, " particles, eps = ", box.eps,
                 ", t_s = ", ts, ", drag scheme ",

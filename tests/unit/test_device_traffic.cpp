@@ -24,8 +24,8 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_simulation.hpp"
-#include "mote/sph/dust_problems.hpp"
-#include "mote/sph/dustybox.hpp"
+#include "mote/setups/dust_problems.hpp"
+#include "mote/setups/dustybox.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {

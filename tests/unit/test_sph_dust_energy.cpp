@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mote/sph/dust_problems.hpp"
+#include "mote/setups/dust_problems.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_system.hpp"
 

@@ -3,7 +3,7 @@
 // relaxed gas-only with damping to t = 1000, then dust-to-gas 0.01 (eq. 57),
 // Epstein drag with rho_grain = 3 g/cm^3 and s = 1 mm in code units of 10 au,
 // 1 M_sun, G = 1 (eq. 20, 58), evolved for 5 orbits with both discretisations.
-// The column is mote/sph/settling_column.hpp (shared with problems/sph_dustsettle).
+// The column is mote/setups/settling_column.hpp (shared with problems/sph_dustsettle).
 // Checks: eps variable: dust mass before flooring conserved to round-off (the
 // floor's contribution is reported), and with the donor-limited pair coefficient
 // no floor at all; S = sqrt(rho eps): no floor, dust mass to the integrator error;
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/settling_column.hpp"
+#include "mote/setups/settling_column.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdio>
 
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/riemann_exact.hpp"
+#include "mote/setups/riemann_exact.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {

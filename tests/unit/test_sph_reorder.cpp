@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "mote/sph/density.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_simulation.hpp"
 

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "mote/core/loops.hpp"
-#include "mote/sph/dustybox.hpp"
+#include "mote/setups/dustybox.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/two_fluid_dust.hpp"
 

@@ -1,12 +1,12 @@
 // Set-ups of the one-fluid dust problems of PL15 sec. 4.1-4.3 (see
-// include/mote/sph/dust_problems.hpp).
-#include "mote/sph/dust_problems.hpp"
+// include/mote/setups/dust_problems.hpp).
+#include "mote/setups/dust_problems.hpp"
 
 #include <cmath>
 
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 
 namespace mote::sph {

@@ -1,12 +1,12 @@
 // Disc column of the dust settling test, PL15 sec. 4.4.1 eq. 53-57 (see
-// include/mote/sph/settling_column.hpp).
-#include "mote/sph/settling_column.hpp"
+// include/mote/setups/settling_column.hpp).
+#include "mote/setups/settling_column.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/external.hpp"
-#include "mote/sph/lattice.hpp"
 
 namespace mote::sph {
 

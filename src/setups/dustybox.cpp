@@ -1,12 +1,12 @@
 // Accelerated dustybox set-up and exact solution (LAB15 sec. 3, eq. 31-32);
-// see include/mote/sph/dustybox.hpp.
-#include "mote/sph/dustybox.hpp"
+// see include/mote/setups/dustybox.hpp.
+#include "mote/setups/dustybox.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
 #include "mote/core/loops.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/two_fluid_dust.hpp"
 
 namespace mote::sph {
