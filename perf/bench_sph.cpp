@@ -28,8 +28,9 @@
 #include "mote/sph/density.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/forces.hpp"
-#include "mote/sph/lattice.hpp"
-#include "mote/sph/settling_column.hpp"
+#include "mote/setups/lattice.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
+#include "mote/setups/settling_column.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {
@@ -124,7 +125,7 @@ std::unique_ptr<SphSystem> make_column_3d() {
   ds.rho_grain = 3.0 / units.density();
   ds.eps = {0.01};
   ds.limit_ts = true;
-  sys->set_dust(ds);
+  add_one_fluid_dust(*sys, ds);
   sys->initialise();
   return sys;
 }

@@ -15,7 +15,7 @@
 #include <random>
 
 #include "bench_main.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_system.hpp"
 
@@ -60,7 +60,7 @@ std::unique_ptr<SphSystem> make_dusty_box(int n_side, int nspecies, int disc, in
     ds.sizes.clear();
     for (int j = 0; j < nspecies; ++j) ds.sizes.push_back(1e-4 * (1.0 + j));
     ds.eps = {0.01 / nspecies};
-    sys->set_dust(ds);
+    add_one_fluid_dust(*sys, ds);
   }
   sys->initialise();
   return sys;

@@ -292,6 +292,12 @@ def load(path):
     with h5py.File(path) as f:
         z = f["particles/position"][:, zax]
         rho = f["particles/density"][...]
+        if "dust_fraction" not in f["particles"]:
+            # Two-fluid (dust.method = "two-fluid"): the dust particles (type 1) carry rho_d as their
+            # density; returned as particles with eps = 1 so that eps * rho is rho_d as for one fluid.
+            dust = f["particles/type"][...] == 1
+            v = f["particles/velocity"][:, zax]
+            return snap, z[dust], rho[dust], np.ones((int(dust.sum()), 1)), v[dust], None, None
         eps = f["particles/dust_fraction"][...].reshape(len(z), -1)
         v, vg = f["particles/velocity"][:, zax], f["particles/gas_velocity"][:, zax]
         vd = None  # v_dj along z per species, written with dust.write_velocities
@@ -306,6 +312,10 @@ def main():
     ap.add_argument("--plot")
     ap.add_argument("--orbits", type=float, nargs="*", default=[10, 20, 30, 40])
     ap.add_argument("--front-tol", type=float, default=0.05)
+    ap.add_argument("--compare", metavar="RUN_DIR", default=None,
+                    help="another run of the column (e.g. one-fluid against two-fluid): L2 / max of the difference "
+                         "of the binned rho_d(|z|) profiles at the last snapshot")
+    ap.add_argument("--compare-tol", type=float, default=None)
     ap.add_argument("--mass-tol", type=float, default=1e-5)
     ap.add_argument("--unfloored-tol", type=float, default=1e-12)
     ap.add_argument("--projected-tol", type=float, default=None,
@@ -339,10 +349,24 @@ def main():
             check(abs(f_sph / f_ref - 1) <= args.front_tol,
                   f"A5 front at {o:g} orbits: SPH {f_sph / col.H:.4f} H, 1D reference {f_ref / col.H:.4f} H "
                   f"(grid solution {front(zc, r) / col.H:.4f} H), ratio {f_sph / f_ref:.4f} (tolerance {args.front_tol:g})")
+    if args.compare:
+        other = load(mote.list_snapshots(args.compare)[-1])
+        last = snaps[-1]
+        zs, fs = sph_profile(np.abs(last[1]), last[3].sum(axis=1) * last[2], dz, 3 * col.H)
+        zo, fo = sph_profile(np.abs(other[1]), other[3].sum(axis=1) * other[2], dz, 3 * col.H)
+        diff = np.sqrt(np.mean((fs - np.interp(zs, zo, fo)) ** 2)) / fo.max()
+        text = (f"rho_d(|z|) against {args.compare} at t = {last[0].time / col.orbit:.2f} orbits "
+                f"(other run at {other[0].time / col.orbit:.2f}): L2 / max = {diff:.3e}")
+        if args.compare_tol is None:
+            print("INFO " + text)
+        else:
+            check(diff <= args.compare_tol, f"{text} (<= {args.compare_tol:g})")
     hist = mote.read_history(os.path.join(args.run_dir, "history.txt"))
     m0 = hist["dust_mass"][0]
     drift = abs(hist["dust_mass"][-1] - m0) / m0
-    drift_u = abs(hist["dust_mass_unfloored"][-1] - m0) / m0
+    # Two-fluid runs have no floor: the particle masses are the dust mass.
+    unfloored = hist["dust_mass_unfloored"] if "dust_mass_unfloored" in hist.dtype.names else hist["dust_mass"]
+    drift_u = abs(unfloored[-1] - m0) / m0
     check(drift <= args.mass_tol, f"dust mass after the floor: relative drift {drift:.2e} (<= {args.mass_tol:g})")
     check(drift_u <= args.unfloored_tol, f"dust mass before the floor: relative drift {drift_u:.2e} (<= {args.unfloored_tol:g})")
     if "dust_projected" in hist.dtype.names:
@@ -427,7 +451,10 @@ def main():
     j = len(col.eps) - 1
     e_tot = eps.sum(axis=1)
     sel = (eps[:, j] > 0.1 * col.eps[j]) & (np.abs(z) < 3 * col.H)
-    v_dust = vg + (v - vg) / np.maximum(e_tot, 1e-300) if len(col.eps) == 1 else None
+    if vg is None:  # two-fluid: the dust particles' own velocity
+        v_dust = v
+    else:
+        v_dust = vg + (v - vg) / np.maximum(e_tot, 1e-300) if len(col.eps) == 1 else None
     if vd is not None and v_dust is not None and sel.any():
         # One species: v = v_g + eps Dv, so the barycentric velocity gives v_d back.
         dev = np.abs(vd[sel, j] - v_dust[sel]).max() / np.abs(v_dust[sel]).max()

@@ -6,7 +6,9 @@
 // power law) and the mixture evolves with Epstein drag (eq. 20). Grain sizes
 // and rho_grain are read in cgs (settle.grain_units = "cgs") and converted
 // with the run's units (10 au, M_sun, G = 1). check.py compares the dust
-// density with the 1D solutions of HPL18 app. A (eq. A3-A5).
+// density with the 1D solutions of HPL18 app. A (eq. A3-A5). With
+// dust.method = "two-fluid" the dust is a particle per gas particle with the
+// semi-implicit drag of LAB15 (VALIDATION B4).
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -16,10 +18,11 @@
 #include "mote/core/log.hpp"
 #include "mote/core/timers.hpp"
 #include "mote/io/problem_main.hpp"
+#include "mote/setups/settling_column.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/settling_column.hpp"
-#include "mote/sph/sph_settings.hpp"
 #include "mote/sph/sph_simulation.hpp"
+#include "mote/sph/two_fluid_dust.hpp"
 
 namespace {
 
@@ -34,13 +37,15 @@ class SettleSimulation final : public sph::SphSimulation {
 
   std::vector<io::Diagnostic> diagnostics() const override {
     auto out = SphSimulation::diagnostics();
+    const auto* one_fluid = system_->module<sph::OneFluidDust>();
+    if (!one_fluid) return out;  // the two-fluid module writes its own columns (dust_mass, momenta, heating)
     const auto d = system_->diagnostics();
     out.push_back({"dust_mass", d.dust_mass});                             // after the floor
     out.push_back({"dust_mass_unfloored", d.dust_mass - d.dust_floored});  // before the floor
     out.push_back({"dust_projected", d.dust_projected});                   // removed by the S-variable projection
     // Particles where eps T_s exceeds the Courant time-step (PL15 eq. 18): the terminal-velocity
     // approximation fails there (the low-density gas above the column).
-    out.push_back({"tva_violations", static_cast<double>(system_->dust()->tva_violations())});
+    out.push_back({"tva_violations", static_cast<double>(one_fluid->tva_violations())});
     return out;
   }
 };
@@ -63,9 +68,7 @@ std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const co
 }
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
-  sph::DustSettings::declare(s);
-  s.rule(io::requires_table("sph_dustsettle", "dust"));
+  sph::declare_sph_problem(s, "sph_dustsettle", {"", {"diffusion", "multigrain", "two-fluid"}, true});
   s.rule(io::requires_choice("sph_dustsettle", "dust.drag", "epstein"));
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
   s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
@@ -101,15 +104,15 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_dustsettle: the SPH engine runs on one MPI rank");
-  sph::DustSettings ds = sph::DustSettings::from_deck(d);
+  const int dim = static_cast<int>(d.integer("settle.dim"));
+  auto [cfg, ds] = sph::start_sph_problem(ctx, "sph_dustsettle", dim);
   if (d.string("settle.grain_units") == "cgs") {
     for (auto& s : ds.sizes) s /= ctx.units.length;
     ds.rho_grain /= ctx.units.density();
   }
   sph::SettlingColumn c;
   c.nx = static_cast<int>(d.integer("settle.nx"));
-  c.dim = static_cast<int>(d.integer("settle.dim"));
+  c.dim = dim;
   c.width = d.real("settle.width");
   c.z_max = d.real("settle.zmax");
   c.rho0 = d.real("settle.rho0");
@@ -125,10 +128,18 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   sph::RelaxedColumn col;
   {
     core::ScopedTimer t(ctx.timers, "relax");
-    col = sph::relax_settling_column(c, sph::config_from_deck(d, c.dim), relax_progress(c.relax_time, d));
+    col = sph::relax_settling_column(c, cfg, relax_progress(c.relax_time, d));
   }
-  auto sys = col.make_system();
-  sys->set_dust(ds);
+  std::unique_ptr<sph::SphSystem> sys;
+  if (ds.method == sph::DustMethod::TwoFluid) {
+    // A dust particle per gas particle, holding the fraction dust.eps of the relaxed mass (eq. 57).
+    if (ds.nspecies != 1) throw core::DeckError("sph_dustsettle: the two-fluid column has one dust species");
+    sys = col.make_two_fluid_system(ds.species_value(ds.eps, 0));
+    add_two_fluid_dust(*sys, ds);
+  } else {
+    sys = col.make_system();
+    add_one_fluid_dust(*sys, ds);
+  }
   logging::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
                 ", mid-plane t_s Omega0 of the largest grain = ",
                 sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());

@@ -8,9 +8,9 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
-#include "mote/sph/dust_problems.hpp"
+#include "mote/setups/dust_problems.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/sph/sph_settings.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {
@@ -21,14 +21,15 @@ using namespace mote;
 class DiffuseSimulation final : public sph::SphSimulation {
  public:
   using SphSimulation::SphSimulation;
-  double max_dt() override { return system_->dust()->timestep(system_->particles(), system_->config()); }
-  void advance(double, double dt) override { system_->dust()->advance_dust_only(*system_, dt); }
+  double max_dt() override {
+    return system_->module<sph::OneFluidDust>()->timestep(system_->particles(), system_->config());
+  }
+  void advance(double, double dt) override { sph::advance_dust_only(*system_, dt); }
 };
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
+  sph::declare_sph_problem(s, "sph_dustydiffuse", {"isothermal"});
   sph::declare_dust_problem(s, "sph_dustydiffuse", sph::DragLaw::ConstantStoppingTime, false);
-  s.rule(io::requires_choice("sph_dustydiffuse", "sph.eos", "isothermal"));
   s.table("dustydiffuse", "Dust diffusion with fixed particles (PL15 sec. 4.3).");
   s.integer("dustydiffuse.n").default_value(50LL).min(4).doc("Particles per unit length along x (spacing 1 / n).");
   s.string("dustydiffuse.lattice")
@@ -50,9 +51,7 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_dustydiffuse: the SPH engine runs on one MPI rank");
-  const auto cfg = sph::config_from_deck(d, 3);
-  const auto ds = sph::DustSettings::from_deck(d);
+  const auto [cfg, ds] = sph::start_sph_problem(ctx, "sph_dustydiffuse", 3);
   sph::DustyDiffuse dd;
   dd.n = static_cast<int>(d.integer("dustydiffuse.n"));
   dd.close_packed = d.string("dustydiffuse.lattice") == "close_packed";

@@ -7,8 +7,8 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
-#include "mote/sph/dust_problems.hpp"
-#include "mote/sph/sph_settings.hpp"
+#include "mote/setups/dust_problems.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {
@@ -16,9 +16,8 @@ namespace {
 using namespace mote;
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
+  sph::declare_sph_problem(s, "sph_dustyshock", {"adiabatic"});
   sph::declare_dust_problem(s, "sph_dustyshock", sph::DragLaw::ConstantK, true);
-  s.rule(io::requires_choice("sph_dustyshock", "sph.eos", "adiabatic"));
   s.table("dustyshock", "Dusty Sod shock tube (PL15 sec. 4.2); gas states.");
   s.real("dustyshock.dx_left")
       .default_value(0.001)
@@ -34,9 +33,7 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1) throw core::DeckError("sph_dustyshock: the SPH engine runs on one MPI rank");
-  const auto cfg = sph::config_from_deck(d, 1);
-  const auto ds = sph::DustSettings::from_deck(d);
+  const auto [cfg, ds] = sph::start_sph_problem(ctx, "sph_dustyshock", 1);
   sph::DustyShock sh;
   sh.dx_left = d.real("dustyshock.dx_left");
   sh.rhog_left = d.real("dustyshock.rhog_left");

@@ -9,9 +9,9 @@
 
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
-#include "mote/sph/lattice.hpp"
-#include "mote/sph/riemann_exact.hpp"
-#include "mote/sph/sph_settings.hpp"
+#include "mote/setups/lattice.hpp"
+#include "mote/setups/riemann_exact.hpp"
+#include "mote/setups/sph_problem.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {
@@ -47,8 +47,7 @@ class SodSimulation final : public sph::SphSimulation {
 };
 
 void declare(core::DeckSchema& s) {
-  sph::declare_settings(s);
-  s.rule(io::requires_choice("sph_sod", "sph.eos", "adiabatic"));
+  sph::declare_sph_problem(s, "sph_sod", {"adiabatic"});
   s.table("sod", "Shock-tube set-up.");
   s.integer("sod.dim").default_value(1LL).min(1).max(3).doc("Dimension (y, z periodic for dim > 1).");
   s.real("sod.dx_left").default_value(0.002).greater_than(0.0).unit("code length").doc("Particle spacing on the left.");
@@ -65,10 +64,8 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  if (ctx.comm.size() > 1)
-    throw core::DeckError("sph_sod: the SPH engine runs on one MPI rank (no particle decomposition yet)");
   const int dim = static_cast<int>(d.integer("sod.dim"));
-  auto cfg = sph::config_from_deck(d, dim);
+  auto cfg = sph::start_sph_problem(ctx, "sph_sod", dim).cfg;
   const SodState l{d.real("sod.rho_left"), d.real("sod.P_left")}, r{d.real("sod.rho_right"), d.real("sod.P_right")};
   sph::Box box;
   box.dim = dim;

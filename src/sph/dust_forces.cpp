@@ -352,7 +352,7 @@ struct DustForcesDispatch {
 
 }  // namespace dust_detail
 
-void OneFluidDust::compute_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg,
+void OneFluidDust::mixture_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg,
                                   const RealView2& vel, const RealView1& u) {
   dust_detail::DustForcesDispatch f{*this, p, nl, box, cfg, vel, u};
   dispatch(p.dim, cfg.kernel, f);

@@ -43,13 +43,34 @@ void check_pdv(const core::Deck& d, core::DeckCheck& check) {
 
 }  // namespace
 
+core::DeckRule requires_dust_method(const std::string& problem, const std::vector<std::string>& methods) {
+  return [=](const core::Deck& d, core::DeckCheck& check) {
+    if (!d.has_table("dust")) return;
+    const std::string& m = d.string("dust.method");
+    std::string names;
+    for (const auto& name : methods) {
+      if (name == m) return;
+      names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    }
+    check.fail("dust.method", problem + " is set up for " + names + ", not \"" + m + "\"");
+  };
+}
+
 void DustSettings::declare(core::DeckSchema& s) {
-  s.table("dust", "One-fluid dust in the terminal-velocity approximation (PL15; N species: MULTIGRAIN, HPL18).",
+  s.table("dust",
+          "SPH dust: one-fluid in the terminal-velocity approximation (PL15; N species: MULTIGRAIN, HPL18) or "
+          "two-fluid dust particles with semi-implicit pairwise drag (LAB15).",
           /*optional=*/true);
   s.string("dust.method")
       .default_value(std::string("diffusion"))
-      .one_of({"diffusion", "multigrain"})
-      .doc("diffusion (PL15) and multigrain (HPL18) are the same scheme; N = species.");
+      .one_of({"diffusion", "multigrain", "two-fluid"})
+      .doc(
+          "diffusion (PL15) and multigrain (HPL18) are the same one-fluid scheme (N = species); two-fluid: "
+          "dust particles, one particle type per species, with the drag of LAB15.");
+  s.string("dust.drag_scheme")
+      .default_value(std::string("improved"))
+      .one_of({"improved", "original"})
+      .doc("two-fluid drag update: LAB15 eq. 17-19 (improved) or eq. 4-6 (original, for comparison).");
   s.integer("dust.species").default_value(1LL).min(1).doc("Number of dust species N (one View extent).");
   s.string("dust.variable")
       .default_value(std::string("epsilon"))
@@ -130,6 +151,8 @@ void DustSettings::declare(core::DeckSchema& s) {
 
 DustSettings DustSettings::from_deck(const core::Deck& d) {
   DustSettings s;
+  s.method = d.string("dust.method") == "two-fluid" ? DustMethod::TwoFluid : DustMethod::OneFluid;
+  s.drag_scheme = d.string("dust.drag_scheme") == "original" ? TwoFluidDrag::Original : TwoFluidDrag::Improved;
   s.nspecies = static_cast<int>(d.integer("dust.species"));
   s.variable = d.string("dust.variable") == "epsilon" ? DustVariable::Epsilon : DustVariable::SqrtRhoEps;
   s.discretisation = d.string("dust.discretisation") == "second_derivatives" ? DustDiscretisation::SecondDerivatives

@@ -10,7 +10,8 @@
 
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
-#include "mote/sph/sph_system.hpp"
+#include "mote/io/h5_file.hpp"
+#include "mote/io/snapshot.hpp"
 
 namespace mote::sph {
 
@@ -293,16 +294,121 @@ DustSnapshot OneFluidDust::snapshot(const Particles& p) const {
   return s;
 }
 
-int OneFluidDust::advance_dust_only(SphSystem& sys, Real t_end) {
+void OneFluidDust::compute_forces(SphSystem& sys, const RealView2& vel, const RealView1& u) {
+  mixture_forces(sys.particles(), sys.neighbours(), sys.box(), sys.config(), vel, u);
+}
+
+Real OneFluidDust::timestep(SphSystem& sys) { return timestep(sys.particles(), sys.config()); }
+
+void OneFluidDust::add_diagnostics(const SphSystem& sys, Diagnostics& dg) const {
+  dg.thermal = thermal_energy(sys.particles(), sys.config());
+  dg.dust_mass = dust_mass(sys.particles());
+  dg.dust_floored = floored_mass();
+  dg.dust_projected = projected_mass();
+}
+
+void OneFluidDust::write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const {
+  const DustSnapshot ds = snapshot(sys.particles());
+  const int n = sys.particles().n, dim = sys.particles().dim, ns = nspecies();
+  std::vector<double> eps(static_cast<size_t>(n) * ns), vg(3 * static_cast<size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < ns; ++k) eps[static_cast<size_t>(i) * ns + k] = ds.eps(i, k);
+    for (int d = 0; d < dim; ++d) vg[3 * i + d] = ds.v_gas(i, d);
+  }
+  out.particle_field("dust_fraction", eps.data(), ns, {"1", 1.0});
+  out.particle_field("gas_velocity", vg.data(), 3, {"code velocity", units.velocity()});
+  if (!s_.write_velocities) return;
+  std::vector<double> vd(static_cast<size_t>(n) * ns * 3, 0.0);  // v_dj = v_g + Dv_j, column 3 j + d
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < ns; ++k)
+      for (int d = 0; d < dim; ++d) vd[(static_cast<size_t>(i) * ns + k) * 3 + d] = ds.v_gas(i, d) + ds.dv(i, k, d);
+  out.particle_field("dust_velocity", vd.data(), 3 * ns, {"code velocity", units.velocity()});
+}
+
+namespace {
+
+/// What the checkpointed dust variable holds (the S variable is stored as S_j / sqrt(rho) = sqrt(eps_j)).
+std::string dust_storage(const DustSettings& s) {
+  return s.variable == DustVariable::Epsilon ? "eps_j" : "sqrt(eps_j)";
+}
+
+/// (n, N) device array as row-major host data.
+std::vector<double> host_rows(const RealView2& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  std::vector<double> out(h.extent(0) * h.extent(1));
+  for (size_t i = 0; i < h.extent(0); ++i)
+    for (size_t j = 0; j < h.extent(1); ++j) out[i * h.extent(1) + j] = h(i, j);
+  return out;
+}
+
+}  // namespace
+
+void OneFluidDust::save_state(const SphSystem&, io::H5File& f) const {
+  const hsize_t n = var.extent(0), ns = var.extent(1);
+  const io::Block block = io::Block::whole({n, ns});
+  f.write("/state/dust_var", block, host_rows(var).data());
+  f.write("/state/dust_dvar", block, host_rows(dvar).data());
+  f.write_attribute("/state/dust_var", "stored", dust_storage(s_));
+  f.write_attribute("/state/dust_var", "floored_mass", floored_mass_);
+  f.write_attribute("/state/dust_var", "projected_mass", projected_mass_);
+  if (!mass_ref_.empty()) f.write("/state/dust_mass_reference", io::Block::whole({ns}), mass_ref_.data());
+}
+
+void OneFluidDust::load_state(SphSystem&, const io::H5File& f) {
+  const hsize_t n = var.extent(0), ns = var.extent(1);
+  if (f.dims("/state/dust_var") != std::vector<hsize_t>{n, ns})
+    throw std::runtime_error("checkpoint holds a different number of dust species than the deck sets up");
+  const std::string stored = f.has_attribute("/state/dust_var", "stored")
+                                 ? f.read_attribute_string("/state/dust_var", "stored")
+                                 : std::string("unlabelled (written before S_j was stored as sqrt(eps_j))");
+  if (stored != dust_storage(s_))
+    throw std::runtime_error("checkpoint dust variable is " + stored + ", the deck evolves " + dust_storage(s_) +
+                             " (dust.variable): restart with the deck that wrote it");
+  std::vector<double> buf(n * ns);
+  for (const auto& [name, view] :
+       {std::pair<const char*, RealView2>{"/state/dust_var", var}, {"/state/dust_dvar", dvar}}) {
+    f.read(name, io::Block::whole({n, ns}), buf.data());
+    auto h = Kokkos::create_mirror_view(view);
+    for (hsize_t i = 0; i < n; ++i)
+      for (hsize_t j = 0; j < ns; ++j) h(i, j) = buf[i * ns + j];
+    Kokkos::deep_copy(view, h);
+  }
+  MassAccounts acc;
+  if (f.has_attribute("/state/dust_var", "floored_mass")) {
+    acc.floored = f.read_attribute_real("/state/dust_var", "floored_mass");
+    acc.projected = f.read_attribute_real("/state/dust_var", "projected_mass");
+  }
+  if (f.exists("/state/dust_mass_reference")) {
+    acc.reference.resize(ns);
+    f.read("/state/dust_mass_reference", io::Block::whole({ns}), acc.reference.data());
+  }
+  restore_mass_accounts(acc);
+}
+
+OneFluidDust& add_one_fluid_dust(SphSystem& sys, const DustSettings& settings, const std::vector<Real>& eps) {
+  const Particles& p = sys.particles();
+  if (p.n == 0) throw std::runtime_error("sph: one-fluid dust added before set_particles()");
+  if (settings.pdv == DustPdV::Gas && sys.config().eos != EosType::Adiabatic)
+    throw std::invalid_argument("dust.pdv = \"gas\" needs sph.eos = \"adiabatic\" (no PdV work when isothermal)");
+  auto dust = std::make_shared<OneFluidDust>(settings, p.n, p.dim);
+  if (!eps.empty()) dust->set_eps(eps, p.id);
+  OneFluidDust& module = *dust;
+  sys.add_module(std::move(dust));
+  return module;
+}
+
+int advance_dust_only(SphSystem& sys, Real t_end) {
+  OneFluidDust* dust = sys.module<OneFluidDust>();
+  if (!dust) throw std::runtime_error("sph: advance_dust_only() needs the one-fluid dust");
   Particles& p = sys.particles();
   Real t = 0.0;
   int steps = 0;
   while (t < t_end * (1.0 - 1e-14)) {
-    Real dt = timestep(p, sys.config());
+    Real dt = dust->timestep(p, sys.config());
     if (t + dt > t_end) dt = t_end - t;
-    kick_predict(p, 0.5 * dt);
+    dust->kick_predict(p, 0.5 * dt);
     sys.compute_accelerations(p.v, p.u);
-    kick(p, 0.5 * dt);
+    dust->kick(p, 0.5 * dt);
     t += dt;
     ++steps;
   }

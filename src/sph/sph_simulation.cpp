@@ -6,7 +6,6 @@
 #include "mote/core/comm.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
-#include "mote/sph/one_fluid_dust.hpp"
 
 namespace mote::sph {
 
@@ -48,11 +47,6 @@ std::vector<std::int32_t> ints_to_host(const IntView1& v) {
   return std::vector<std::int32_t>(h.data(), h.data() + h.extent(0));
 }
 
-/// What the checkpointed dust variable holds (the S variable is stored as S_j / sqrt(rho) = sqrt(eps_j)).
-std::string dust_storage(const OneFluidDust& dust) {
-  return dust.settings().variable == DustVariable::Epsilon ? "eps_j" : "sqrt(eps_j)";
-}
-
 }  // namespace
 
 SphSimulation::SphSimulation(std::unique_ptr<SphSystem> system, const units::UnitSystem& units)
@@ -84,24 +78,7 @@ void SphSimulation::write_snapshot(io::SnapshotWriter& out) const {
   out.particle_field("u", vec(snap.u).data(), 1, {"code specific energy", units_.specific_energy()});
   out.particle_field("pressure", vec(snap.P).data(), 1, {"code pressure", units_.pressure()});
   out.particle_field("mass", vec(snap.m).data(), 1, {"code mass", units_.mass});
-  if (const auto* dust = system_->dust()) {
-    const auto ds = dust->snapshot(system_->particles());
-    const int ns = static_cast<int>(ds.eps.extent(1));
-    std::vector<double> eps(static_cast<size_t>(n) * ns), vg(xyz.size(), 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int k = 0; k < ns; ++k) eps[static_cast<size_t>(i) * ns + k] = ds.eps(i, k);
-      for (int d = 0; d < dim; ++d) vg[3 * i + d] = ds.v_gas(i, d);
-    }
-    out.particle_field("dust_fraction", eps.data(), ns, {"1", 1.0});
-    out.particle_field("gas_velocity", vg.data(), 3, {"code velocity", units_.velocity()});
-    if (dust->settings().write_velocities) {
-      std::vector<double> vd(static_cast<size_t>(n) * ns * 3, 0.0);  // v_dj = v_g + Dv_j, column 3 j + d
-      for (int i = 0; i < n; ++i)
-        for (int k = 0; k < ns; ++k)
-          for (int d = 0; d < dim; ++d) vd[(static_cast<size_t>(i) * ns + k) * 3 + d] = ds.v_gas(i, d) + ds.dv(i, k, d);
-      out.particle_field("dust_velocity", vd.data(), 3 * ns, {"code velocity", units_.velocity()});
-    }
-  }
+  for (const auto& m : system_->modules()) m->write_snapshot(*system_, out, units_);
   std::vector<std::int32_t> type(snap.type.data(), snap.type.data() + n), id(snap.id.data(), snap.id.data() + n);
   out.particle_field("type", type.data(), {"1", 1.0});
   out.particle_field("id", id.data(), {"1", 1.0});
@@ -123,16 +100,7 @@ void SphSimulation::save_state(io::H5File& f) const {
   f.write("/state/alpha", scalar, to_host(p.alpha).data());
   f.write("/state/type", scalar, ints_to_host(p.type).data());
   f.write("/state/id", scalar, ints_to_host(p.id).data());
-  if (const auto* dust = system_->dust()) {
-    const hsize_t ns = dust->var.extent(1);
-    f.write("/state/dust_var", Block::whole({n, ns}), to_host(dust->var, static_cast<int>(ns)).data());
-    f.write("/state/dust_dvar", Block::whole({n, ns}), to_host(dust->dvar, static_cast<int>(ns)).data());
-    f.write_attribute("/state/dust_var", "stored", dust_storage(*dust));
-    const auto acc = dust->mass_accounts();
-    f.write_attribute("/state/dust_var", "floored_mass", acc.floored);
-    f.write_attribute("/state/dust_var", "projected_mass", acc.projected);
-    if (!acc.reference.empty()) f.write("/state/dust_mass_reference", Block::whole({ns}), acc.reference.data());
-  }
+  for (const auto& m : system_->modules()) m->save_state(*system_, f);
   const auto& nl = system_->neighbours();
   if (nl.built()) {  // what the list was built from: a restart rebuilds the same list
     f.write("/state/neighbour_x_build", vec, to_host(nl.x_build, p.dim).data());
@@ -168,32 +136,7 @@ void SphSimulation::load_state(const io::H5File& f) {
   read1("/state/divv", p.divv);
   read1("/state/divv_old", system_->divv_old());
   read1("/state/alpha", p.alpha);
-  if (auto* dust = system_->dust()) {
-    const hsize_t ns = dust->var.extent(1);
-    if (f.dims("/state/dust_var") != std::vector<hsize_t>{n, ns})
-      throw std::runtime_error("checkpoint holds a different number of dust species than the deck sets up");
-    const std::string stored = f.has_attribute("/state/dust_var", "stored")
-                                   ? f.read_attribute_string("/state/dust_var", "stored")
-                                   : std::string("unlabelled (written before S_j was stored as sqrt(eps_j))");
-    if (stored != dust_storage(*dust))
-      throw std::runtime_error("checkpoint dust variable is " + stored + ", the deck evolves " + dust_storage(*dust) +
-                               " (dust.variable): restart with the deck that wrote it");
-    std::vector<double> dbuf(n * ns);
-    f.read("/state/dust_var", Block::whole({n, ns}), dbuf.data());
-    from_host(dbuf, dust->var);
-    f.read("/state/dust_dvar", Block::whole({n, ns}), dbuf.data());
-    from_host(dbuf, dust->dvar);
-    OneFluidDust::MassAccounts acc;
-    if (f.has_attribute("/state/dust_var", "floored_mass")) {
-      acc.floored = f.read_attribute_real("/state/dust_var", "floored_mass");
-      acc.projected = f.read_attribute_real("/state/dust_var", "projected_mass");
-    }
-    if (f.exists("/state/dust_mass_reference")) {
-      acc.reference.resize(ns);
-      f.read("/state/dust_mass_reference", Block::whole({ns}), acc.reference.data());
-    }
-    dust->restore_mass_accounts(acc);
-  }
+  for (const auto& m : system_->modules()) m->load_state(*system_, f);
   std::vector<std::int32_t> ibuf(n);
   const std::pair<const char*, IntView1> int_fields[] = {{"/state/type", p.type}, {"/state/id", p.id}};
   for (const auto& [name, view] : int_fields) {
@@ -215,15 +158,18 @@ void SphSimulation::load_state(const io::H5File& f) {
 
 std::vector<io::Diagnostic> SphSimulation::diagnostics() const {
   const auto d = system_->diagnostics();
-  return {{"mass", d.mass},
-          {"momentum_x", d.momentum[0]},
-          {"momentum_y", d.momentum[1]},
-          {"momentum_z", d.momentum[2]},
-          {"momentum_abs", d.momentum_abs},
-          {"kinetic", d.kinetic},
-          {"thermal", d.thermal},
-          {"energy", d.energy},
-          {"v_rms", d.v_rms}};
+  std::vector<io::Diagnostic> out{{"mass", d.mass},
+                                  {"momentum_x", d.momentum[0]},
+                                  {"momentum_y", d.momentum[1]},
+                                  {"momentum_z", d.momentum[2]},
+                                  {"momentum_abs", d.momentum_abs},
+                                  {"kinetic", d.kinetic},
+                                  {"thermal", d.thermal},
+                                  {"energy", d.energy},
+                                  {"v_rms", d.v_rms}};
+  for (const auto& m : system_->modules())
+    for (auto& extra : m->history(*system_)) out.push_back(std::move(extra));
+  return out;
 }
 
 std::optional<io::NonFinite> SphSimulation::find_non_finite() const {

@@ -11,17 +11,16 @@
 #include "mote/core/loops.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/forces.hpp"
-#include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/timestep.hpp"
 
 namespace mote::sph {
 
 namespace {
 
-/// Kick (half step), drift, predict v and u to the end of the step, and h
-/// from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
+/// Drift after the first half kick, predict v and u to the end of the step,
+/// and h from dh/dt = h div v / d (continuity equation, PL15 eq. 10) as the
 /// starting guess of the h-rho iteration.
-void kick_drift(const Particles& p, bool energy, Real dt) {
+void drift(const Particles& p, bool energy, Real dt) {
   const int dim = p.dim;
   const auto x = p.x;
   const auto v = p.v;
@@ -34,24 +33,17 @@ void kick_drift(const Particles& p, bool energy, Real dt) {
   const auto divv = p.divv;
   const Real hdt = 0.5 * dt;
   par_for(
-      "sph::kick_drift", 0, p.n, KOKKOS_LAMBDA(int i) {
+      "sph::drift", 0, p.n, KOKKOS_LAMBDA(int i) {
         for (int d = 0; d < dim; ++d) {
-          const Real vh = v(i, d) + hdt * a(i, d);
-          v(i, d) = vh;
-          x(i, d) += dt * vh;  // wrapped into the box at the next list rebuild
-          vpred(i, d) = vh + hdt * a(i, d);
+          x(i, d) += dt * v(i, d);  // wrapped into the box at the next list rebuild
+          vpred(i, d) = v(i, d) + hdt * a(i, d);
         }
         h(i) *= math::exp(dt * divv(i) / dim);
-        if (energy) {
-          u(i) += hdt * dudt(i);
-          upred(i) = u(i) + hdt * dudt(i);
-        } else {
-          upred(i) = u(i);
-        }
+        upred(i) = energy ? u(i) + hdt * dudt(i) : u(i);
       });
 }
 
-/// Second kick with the new accelerations.
+/// Half kick with the current accelerations (before the drift and after the new forces).
 void kick(const Particles& p, bool energy, Real hdt) {
   const int dim = p.dim;
   const auto v = p.v;
@@ -79,6 +71,9 @@ void SphSystem::set_particles(const ParticleSetup& s) {
   if (n <= 0 || static_cast<int>(s.x.size()) != n * dim || static_cast<int>(s.h.size()) != n) {
     throw std::invalid_argument("sph: particle set-up needs x (n*dim), m (n) and h (n)");
   }
+  const auto sized = [n](std::size_t size, int per) { return size == 0 || size == static_cast<std::size_t>(n) * per; };
+  if (!sized(s.v.size(), dim) || !sized(s.u.size(), 1) || !sized(s.type.size(), 1))
+    throw std::invalid_argument("sph: particle set-up v (n*dim), u (n) and type (n) must be empty or complete");
   p_.allocate(n, dim);
   auto x = Kokkos::create_mirror_view(p_.x);
   auto v = Kokkos::create_mirror_view(p_.v);
@@ -109,20 +104,29 @@ void SphSystem::set_particles(const ParticleSetup& s) {
   Kokkos::deep_copy(p_.omega, 1.0);
   divv_old_ = RealView1("sph::divv_old", n);
   nl_ = NeighbourList();
-  dust_.reset();
+  modules_.clear();
+  gas_forces_ = nullptr;
   time_ = 0.0;
   dt_next_ = 0.0;
   steps_ = 0;
 }
 
-void SphSystem::set_dust(const DustSettings& settings, const std::vector<Real>& eps) {
-  if (p_.n == 0) throw std::runtime_error("sph: set_dust() before set_particles()");
-  if (settings.pdv == DustPdV::Gas && cfg_.eos != EosType::Adiabatic)
-    throw std::invalid_argument("dust.pdv = \"gas\" needs sph.eos = \"adiabatic\" (no PdV work when isothermal)");
-  dust_ = std::make_shared<OneFluidDust>(settings, p_.n, p_.dim);
-  if (!eps.empty()) dust_->set_eps(eps, p_.id);
+void SphSystem::add_module(std::shared_ptr<SphModule> module) {
+  if (p_.n == 0) throw std::runtime_error("sph: add_module() before set_particles()");
+  const std::string group = module->exclusive_group();
+  for (const auto& m : modules_)
+    if (!group.empty() && m->exclusive_group() == group)
+      throw std::invalid_argument("sph: " + module->name() + " and " + m->name() + " are both a " + group +
+                                  ": one per run");
+  if (module->replaces_gas_forces()) {
+    if (gas_forces_)
+      throw std::invalid_argument("sph: " + module->name() + " and " + gas_forces_->name() +
+                                  " both replace the gas forces: one dust method per run");
+    gas_forces_ = module.get();
+  }
+  modules_.push_back(std::move(module));
   if (dt_next_ > 0.0) {  // added to a running (e.g. relaxed) system
-    dust_->initialise(p_);
+    modules_.back()->initialise(*this);
     compute_accelerations(p_.v, p_.u);
     dt_next_ = timestep();
   }
@@ -137,7 +141,7 @@ void SphSystem::reorder_particles(const View<int*>& order) {
   reorder_.set_order(order);
   reorder_.apply(p_);
   reorder_.apply(divv_old_);
-  if (dust_) dust_->reorder(reorder_);
+  for (const auto& m : modules_) m->reorder(reorder_);
   reorder_.release_order();
 }
 
@@ -160,21 +164,23 @@ void SphSystem::update_density() {
 
 void SphSystem::compute_accelerations(const RealView2& vel, const RealView1& u) {
   update_density();
-  if (dust_) {
-    dust_->compute_forces(p_, nl_, box_, cfg_, vel, u);
+  if (gas_forces_) {
+    gas_forces_->compute_forces(*this, vel, u);
   } else {
     update_eos(p_, cfg_, u);
     compute_forces(p_, nl_, box_, cfg_, vel, u);
   }
+  for (const auto& m : modules_)
+    if (m.get() != gas_forces_) m->compute_forces(*this, vel, u);
   for (const auto& f : external_) f(p_, vel, time_);
   if (cfg_.damping > 0.0) apply_damping(p_, vel, cfg_.damping);
 }
 
 void SphSystem::initialise() {
   if (p_.n == 0) throw std::runtime_error("sph: initialise() before set_particles()");
-  if (dust_) {
+  if (!modules_.empty()) {
     update_density();
-    dust_->initialise(p_);
+    for (const auto& m : modules_) m->initialise(*this);
   }
   compute_accelerations(p_.v, p_.u);
   Kokkos::deep_copy(divv_old_, p_.divv);
@@ -191,7 +197,10 @@ Real SphSystem::timestep() {
     }
   };
   for (const auto& c : dt_hooks_) take(c(p_), "time-step constraint of the problem");
-  if (dust_) take(dust_->timestep(p_, cfg_), "one-fluid dust time-step (diffusion/stopping time)");
+  for (const auto& m : modules_) {
+    const std::string limit = m->timestep_name();
+    take(m->timestep(*this), limit.c_str());
+  }
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw core::NumericalError(logging::cat("sph: invalid time-step ", dt, " from the ", dt_limit_));
   return dt;
@@ -201,13 +210,16 @@ Real SphSystem::step() {
   const Real dt = dt_next_;
   const Real hdt = 0.5 * dt;
   const bool energy = cfg_.eos == EosType::Adiabatic;
-  kick_drift(p_, energy, dt);
-  if (dust_) dust_->kick_predict(p_, hdt);
+  for (const auto& m : modules_) m->begin_step(*this, dt);
+  kick(p_, energy, hdt);
+  for (const auto& m : modules_) m->after_first_kick(*this, hdt);
+  drift(p_, energy, dt);
+  for (const auto& m : modules_) m->after_drift(*this, hdt);
   time_ += dt;
   // A neighbour rebuild in here reorders the particles (new Views).
   compute_accelerations(p_.vpred, p_.upred);
   kick(p_, energy, hdt);
-  if (dust_) dust_->kick(p_, hdt);
+  for (const auto& m : modules_) m->after_kick(*this, hdt);
   if (cfg_.cullen_dehnen) update_cullen_dehnen(p_, divv_old_, cfg_, dt);
   ++steps_;
   dt_next_ = timestep();
@@ -276,12 +288,7 @@ Diagnostics SphSystem::diagnostics() const {
     par_reduce(
         "sph::diag_thermal", 0, p_.n, KOKKOS_LAMBDA(int i, Real& s) { s += m(i) * u(i); }, dg.thermal);
   }
-  if (dust_) {
-    dg.thermal = dust_->thermal_energy(p_, cfg_);
-    dg.dust_mass = dust_->dust_mass(p_);
-    dg.dust_floored = dust_->floored_mass();
-    dg.dust_projected = dust_->projected_mass();
-  }
+  for (const auto& mod : modules_) mod->add_diagnostics(*this, dg);
   dg.kinetic = 0.5 * v2sum;
   dg.energy = dg.kinetic + dg.thermal;
   dg.v_rms = dg.mass > 0.0 ? std::sqrt(v2sum / dg.mass) : 0.0;

@@ -48,6 +48,7 @@ if restart_steps:
         names = sorted(a["particles"].keys())
         same = a.attrs["time"] == b.attrs["time"] and names == sorted(b["particles"].keys()) and all(
             a["particles/" + k][...].tobytes() == b["particles/" + k][...].tobytes() for k in names)
-        checks.check(same and "dust_fraction" in names, "restarted run ends bit-identical to the uninterrupted one "
+        dusty = "dust_fraction" in names or bool((a["particles/type"][...] == 1).any())  # one- or two-fluid
+        checks.check(same and dusty, "restarted run ends bit-identical to the uninterrupted one "
                      f"(t = {b.attrs['time']:.6g}, particle fields {', '.join(names)})")
 sys.exit(checks.finish())

@@ -1,15 +1,15 @@
 // Reference solutions of the one-fluid dust tests (PL15 sec. 4.1; HPL18 sec.
 // 4.1): the linear two-fluid dustywave (LP11) and the same wave in the
 // linearised terminal-velocity equations (PL15 eq. 10-14), plus the dustywave
-// set-up of the tests on top of the library one (mote/sph/dust_problems.hpp).
+// set-up of the tests on top of the library one (mote/setups/dust_problems.hpp).
 #pragma once
 
 #include <cmath>
 #include <complex>
 #include <vector>
 
-#include "mote/sph/dust_problems.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/dust_problems.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_system.hpp"
 
@@ -121,7 +121,7 @@ struct DustyWaveSetup {
   double hfact = 1.2;
 };
 
-/// PL15 sec. 4.1 through the library set-up (mote/sph/dust_problems.hpp):
+/// PL15 sec. 4.1 through the library set-up (mote/setups/dust_problems.hpp):
 /// rho_g0 = rho_d0 = 1, gamma = 5/3, c_s = 1; N species: equal bins eps_j = eps / N
 /// of identical grains with K_j = K / N, which keeps T_sj = t_s (HPL18 eq. 14).
 inline SphSystem make_dustywave(const DustyWaveSetup& w) {

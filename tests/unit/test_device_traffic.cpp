@@ -24,7 +24,8 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_simulation.hpp"
-#include "mote/sph/dust_problems.hpp"
+#include "mote/setups/dust_problems.hpp"
+#include "mote/setups/dustybox.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
 namespace {
@@ -211,6 +212,30 @@ TEST(DeviceTraffic, SphStepsWithoutRebuildsReadNothingBack) {
   EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
   EXPECT_EQ(counter.scalar_reads(), 0) << counter.report();
   EXPECT_EQ(counter.allocations(), 0) << counter.report();
+}
+
+// Two-fluid dust (LAB15): the 3D dustybox, dust sliding through the gas (rebuilds), the drag in every step.
+TEST(DeviceTraffic, TwoFluidSphStepsCopyAndAllocateNothing) {
+  sph::DustyBox box;
+  box.dim = 3;
+  box.n = 8;
+  sph::SphConfig cfg;
+  cfg.eos = sph::EosType::Isothermal;
+  sph::DustSettings ds;
+  ds.method = sph::DustMethod::TwoFluid;
+  ds.drag = sph::DragLaw::ConstantStoppingTime;
+  ds.stopping_time = {1e-3};
+  sph::SphSimulation sim(sph::make_dustybox(box, cfg, ds), units::UnitSystem{});
+  double t = 0;
+  take_steps(sim, 30, t);  // the neighbour list's work arrays reach their size (the dust changes the pair counts)
+  const int builds0 = sim.system().neighbours().builds();
+  TrafficCounter counter;
+  take_steps(sim, 40, t);
+  const int rebuilds = sim.system().neighbours().builds() - builds0;
+  ASSERT_GT(rebuilds, 0) << "the steps must include neighbour rebuilds";
+  EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+  EXPECT_EQ(counter.allocations(), 0) << counter.report();
+  EXPECT_LE(counter.scalar_reads(), 3 * rebuilds) << counter.report();
 }
 
 TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {

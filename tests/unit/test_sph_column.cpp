@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "mote/sph/external.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

@@ -63,7 +63,7 @@ void expect_bit_identical_restart(DustVariable var, const std::string& path) {
   advance(*resumed, 10);
 
   EXPECT_EQ(resumed->system().time(), full->system().time());
-  EXPECT_EQ(host(resumed->system().dust()->var), host(full->system().dust()->var));
+  EXPECT_EQ(host(resumed->system().module<OneFluidDust>()->var), host(full->system().module<OneFluidDust>()->var));
   EXPECT_EQ(host(resumed->system().particles().x), host(full->system().particles().x));
   EXPECT_EQ(host(resumed->system().particles().v), host(full->system().particles().v));
   const auto d1 = resumed->system().diagnostics(), d0 = full->system().diagnostics();

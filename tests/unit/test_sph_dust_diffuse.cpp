@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "mote/sph/one_fluid_dust.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {
@@ -55,11 +56,11 @@ DiffuseResult run_diffuse(int n, DustDiscretisation disc, DustVariable var, int 
   sys.initialise();
   const Diagnostics d0 = sys.diagnostics();
   DiffuseResult res;
-  res.steps = sys.dust()->advance_dust_only(sys, t_end);
+  res.steps = advance_dust_only(sys, t_end);
   const Diagnostics d1 = sys.diagnostics();
   res.dust_drift = std::fabs(d1.dust_mass - d1.dust_floored - d0.dust_mass) / d0.dust_mass;
   const Snapshot snap = sys.snapshot();
-  const DustSnapshot dsn = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot dsn = sys.module<OneFluidDust>()->snapshot(sys.particles());
   double e2 = 0.0;
   int cnt = 0;
   for (int i = 0; i < np; ++i) {

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mote/sph/dust_problems.hpp"
+#include "mote/setups/dust_problems.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_system.hpp"
 
@@ -45,7 +45,7 @@ Rate energy_rate(DustVariable var, DustDiscretisation disc, DustEnergy en, DustF
   sys->initialise();
   sys->advance_to(0.05);
   Particles& p = sys->particles();
-  OneFluidDust& dust = *sys->dust();
+  OneFluidDust& dust = *sys->module<OneFluidDust>();
   Kokkos::deep_copy(dust.var_pred, dust.var);
   sys->compute_accelerations(p.v, p.u);
   const auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.m);

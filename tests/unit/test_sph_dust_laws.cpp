@@ -10,6 +10,7 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/deck_schema.hpp"
 #include "mote/dust/size_distribution.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {
@@ -71,7 +72,7 @@ SphSystem three_species_box(bool limit_ts) {
   ds.rho_grain = 3.0;
   ds.eps = {0.01, 0.05, 0.1};
   ds.limit_ts = limit_ts;
-  sys.set_dust(ds);
+  add_one_fluid_dust(sys, ds);
   sys.initialise();
   return sys;
 }
@@ -83,7 +84,7 @@ void check_multigrain_times(bool limit_ts) {
   const SphSystem sys = three_species_box(limit_ts);
   const double gamma = 5.0 / 3.0, eps = 0.16;
   const double sizes[3] = {1e-3, 1e-2, 1e-1}, fractions[3] = {0.01, 0.05, 0.1};
-  const OneFluidDust& d = *sys.dust();
+  const OneFluidDust& d = *sys.module<OneFluidDust>();
   const IdOrder by_id(sys.particles().id);  // as the snapshot
   const auto ts = by_id(d.ts);
   const auto coef = by_id(d.coef);
@@ -157,10 +158,10 @@ TEST(SphDustLaws, TerminalVelocityWarning) {
   mote::sph::testing::DustyWaveSetup w;
   w.K = 1.0;
   SphSystem weak = mote::sph::testing::make_dustywave(w);
-  EXPECT_EQ(weak.dust()->tva_violations(), 100);
+  EXPECT_EQ(weak.module<OneFluidDust>()->tva_violations(), 100);
   w.K = 1000.0;
   SphSystem strong = mote::sph::testing::make_dustywave(w);
-  EXPECT_EQ(strong.dust()->tva_violations(), 0);
+  EXPECT_EQ(strong.module<OneFluidDust>()->tva_violations(), 0);
 }
 
 TEST(SphDustLaws, DeckTable) {
@@ -219,9 +220,9 @@ TEST(SphDustLaws, GasPdVNeedsAdiabaticGas) {
     DustSettings ds;
     ds.pdv = DustPdV::Gas;
     if (eos == EosType::Isothermal) {
-      EXPECT_THROW(sys.set_dust(ds), std::invalid_argument);
+      EXPECT_THROW(add_one_fluid_dust(sys, ds), std::invalid_argument);
     } else {
-      EXPECT_NO_THROW(sys.set_dust(ds));
+      EXPECT_NO_THROW(add_one_fluid_dust(sys, ds));
     }
   }
 }

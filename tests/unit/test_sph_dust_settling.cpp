@@ -3,7 +3,7 @@
 // relaxed gas-only with damping to t = 1000, then dust-to-gas 0.01 (eq. 57),
 // Epstein drag with rho_grain = 3 g/cm^3 and s = 1 mm in code units of 10 au,
 // 1 M_sun, G = 1 (eq. 20, 58), evolved for 5 orbits with both discretisations.
-// The column is mote/sph/settling_column.hpp (shared with problems/sph_dustsettle).
+// The column is mote/setups/settling_column.hpp (shared with problems/sph_dustsettle).
 // Checks: eps variable: dust mass before flooring conserved to round-off (the
 // floor's contribution is reported), and with the donor-limited pair coefficient
 // no floor at all; S = sqrt(rho eps): no floor, dust mass to the integrator error;
@@ -20,7 +20,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mote/sph/settling_column.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
+#include "mote/setups/settling_column.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {
@@ -86,13 +87,13 @@ double reference_front(double t_end, double rho0_gauss, double H, double cs, dou
 /// dz (empty bins skipped), linear interpolation between bin centres.
 double sph_front(SphSystem& sys, double H, double dz) {
   const Snapshot s = sys.snapshot();
-  const DustSnapshot d = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot d = sys.module<OneFluidDust>()->snapshot(sys.particles());
   const int nb = static_cast<int>(3.0 * H / dz) + 1;
   std::vector<double> sum(nb, 0.0), cnt(nb, 0.0);
   for (int i = 0; i < sys.particles().n; ++i) {
     const int b = std::min(nb - 1, static_cast<int>(std::fabs(s.x(i, 1)) / dz));
     double e = 0.0;
-    for (int j = 0; j < sys.dust()->nspecies(); ++j) e += d.eps(i, j);
+    for (int j = 0; j < sys.module<OneFluidDust>()->nspecies(); ++j) e += d.eps(i, j);
     sum[b] += e * s.rho(i);
     cnt[b] += 1.0;
   }
@@ -120,7 +121,7 @@ struct SettlingResult {
 
 double midplane_eps(SphSystem& sys, double H) {
   const Snapshot s = sys.snapshot();
-  const DustSnapshot d = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot d = sys.module<OneFluidDust>()->snapshot(sys.particles());
   double sum = 0.0;
   int n = 0;
   for (int i = 0; i < sys.particles().n; ++i) {
@@ -160,7 +161,7 @@ SettlingResult run_settling(int nx, DustDiscretisation disc, DustVariable var, d
   ds.flux = flux;
   ds.project_mass = project_mass;
   ds.eps = {0.01 / 1.01};  // PL15 eq. 57
-  sys.set_dust(ds);
+  add_one_fluid_dust(sys, ds);
   SettlingResult r;
   r.ts_omega = ts_epstein(ds.rho_grain, ds.sizes[0], rho0, cs, 1.0) * omega0;
   const Diagnostics d0 = sys.diagnostics();
@@ -183,7 +184,7 @@ SettlingResult run_settling(int nx, DustDiscretisation disc, DustVariable var, d
   r.dust_drift = std::fabs(r.dust_change);
   r.projected = d1.dust_projected / d0.dust_mass;
   r.mom = std::fabs(d1.momentum[1] - d0.momentum[1]) / d1.momentum_abs;
-  r.tva = sys.dust()->tva_violations();
+  r.tva = sys.module<OneFluidDust>()->tva_violations();
   r.steps = sys.steps() - steps0;
   return r;
 }

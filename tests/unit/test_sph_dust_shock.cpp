@@ -10,7 +10,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mote/sph/riemann_exact.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
+#include "mote/setups/riemann_exact.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {
@@ -48,7 +49,7 @@ ShockResult run_dustyshock(DustDiscretisation disc, DustVariable var, int nspeci
   sys.advance_to(t_end);
   const Diagnostics d1 = sys.diagnostics();
   const Snapshot snap = sys.snapshot();
-  const DustSnapshot dsn = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot dsn = sys.module<OneFluidDust>()->snapshot(sys.particles());
   const ExactRiemann exact({rhog_l / (1.0 - eps0), 0.0, p_l}, {rhog_r / (1.0 - eps0), 0.0, p_r}, gamma);
   ShockResult r;
   for (int i = 0; i < sys.particles().n; ++i) {

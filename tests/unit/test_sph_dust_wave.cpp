@@ -8,6 +8,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "mote/sph/one_fluid_dust.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {
@@ -68,7 +69,7 @@ WaveErrors run_wave(const DustyWaveSetup& w, double t_end) {
   sys.advance_to(t_end);
   const Diagnostics d1 = sys.diagnostics();
   const Snapshot snap = sys.snapshot();
-  const DustSnapshot ds = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot ds = sys.module<OneFluidDust>()->snapshot(sys.particles());
   using C = Cplx;
   C a1[4], b1[4];
   two_fluid_solution(w.K, t_end, a1);
@@ -183,7 +184,7 @@ State run_state(const DustyWaveSetup& w, double t_end) {
   SphSystem sys = make_dustywave(w);
   sys.advance_to(t_end);
   const Snapshot snap = sys.snapshot();
-  const DustSnapshot ds = sys.dust()->snapshot(sys.particles());
+  const DustSnapshot ds = sys.module<OneFluidDust>()->snapshot(sys.particles());
   State st;
   for (int i = 0; i < sys.particles().n; ++i) {
     double e = 0.0;

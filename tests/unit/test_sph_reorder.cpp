@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "mote/sph/density.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_simulation.hpp"
 
@@ -69,7 +69,7 @@ std::unique_ptr<SphSystem> make_shuffled_dusty_box() {
   ds.drag = DragLaw::ConstantK;
   ds.k_drag = {50.0, 100.0};
   ds.eps = {0.1, 0.2};
-  sys->set_dust(ds);
+  add_one_fluid_dust(*sys, ds);
   sys->initialise();
   return sys;
 }
@@ -77,7 +77,7 @@ std::unique_ptr<SphSystem> make_shuffled_dusty_box() {
 /// Every per-particle field, as raw bytes in id order.
 std::map<std::string, std::vector<unsigned char>> state_by_id(const SphSystem& sys) {
   const Particles& p = sys.particles();
-  const OneFluidDust& d = *sys.dust();
+  const OneFluidDust& d = *sys.module<OneFluidDust>();
   const IdOrder by_id(p.id);
   std::map<std::string, std::vector<unsigned char>> out;
   auto put = [&out](const std::string& name, const auto& host) {

@@ -9,8 +9,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "mote/sph/lattice.hpp"
-#include "mote/sph/riemann_exact.hpp"
+#include "mote/setups/lattice.hpp"
+#include "mote/setups/riemann_exact.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

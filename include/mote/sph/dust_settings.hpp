@@ -1,5 +1,5 @@
-// Settings of the one-fluid dust method in SPH (PL15; MULTIGRAIN, HPL18) and
-// their deck table [dust]: number of species, evolved variable (eps_j or
+// Settings of the SPH dust methods (one-fluid: PL15, MULTIGRAIN HPL18; two-fluid:
+// LAB15) and their deck table [dust]: method, number of species, evolved variable (eps_j or
 // S_j = sqrt(rho eps_j), PL15 app. B / HPL18 eq. 51), discretisation of the
 // dust diffusion equation (two first derivatives, PL15 eq. 26, 29-30; direct
 // second derivatives, PL15 eq. 43 / HPL18 eq. 51), energy variable (u, PL15
@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "mote/core/deck_schema.hpp"
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/dust_drag.hpp"
 
-namespace mote::core {
-class DeckSchema;
-class Deck;
-}  // namespace mote::core
-
 namespace mote::sph {
+
+/// Deck rule of a problem set up for one dust method: dust.method (when the
+/// table is there) must be one of the given names.
+core::DeckRule requires_dust_method(const std::string& problem, const std::vector<std::string>& methods);
 
 enum class DustVariable : int { Epsilon = 0, SqrtRhoEps = 1 };
 enum class DustDiscretisation : int { SecondDerivatives = 0, FirstDerivatives = 1 };
@@ -30,10 +30,16 @@ enum class DustTimestep : int { Combined = 0, Separate = 1 };
 /// PdV work of the gas: div v (PL15 eq. 13, footnote 2) or div v_g plus drag heating
 /// (LP14a's first-order form), rho_g du/dt += div(P D grad P / rho_g), see one_fluid_dust.hpp.
 enum class DustPdV : int { Barycentric = 0, Gas = 1 };
+/// Dust method: one-fluid terminal velocity (PL15, N species HPL18) or dust particles with pairwise drag (LAB15).
+enum class DustMethod : int { OneFluid = 0, TwoFluid = 1 };
+/// Two-fluid drag update: LAB15 eq. 17-19 (improved) or eq. 4-6 (original, excess drag under differential forces).
+enum class TwoFluidDrag : int { Improved = 0, Original = 1 };
 /// Pair coefficient of PL15 eq. 43: D_a + D_b (paper), or that limited to 2 D of the donor.
 enum class DustFlux : int { Arithmetic = 0, DonorLimited = 1 };
 
 struct DustSettings {
+  DustMethod method = DustMethod::OneFluid;
+  TwoFluidDrag drag_scheme = TwoFluidDrag::Improved;  ///< two-fluid only
   int nspecies = 1;
   DustVariable variable = DustVariable::Epsilon;
   DustDiscretisation discretisation = DustDiscretisation::SecondDerivatives;

@@ -33,10 +33,10 @@
 #include "mote/sph/neighbours.hpp"
 #include "mote/sph/particles.hpp"
 #include "mote/sph/reorder.hpp"
+#include "mote/sph/sph_module.hpp"
+#include "mote/sph/sph_system.hpp"
 
 namespace mote::sph {
-
-class SphSystem;
 
 /// Host copies of the dust fields of a snapshot, in id order.
 struct DustSnapshot {
@@ -45,9 +45,25 @@ struct DustSnapshot {
   HostView<Real***> dv;    ///< Dv_j = v_dj - v_g = T_sj grad P / rho_g (HPL18 eq. 24), (n x N x dim)
 };
 
-class OneFluidDust {
+class OneFluidDust : public SphModule {
  public:
   OneFluidDust(const DustSettings& s, int n, int dim);
+
+  // SphModule: the engine's calls (see sph_module.hpp).
+  std::string name() const override { return "one-fluid dust"; }
+  bool replaces_gas_forces() const override { return true; }
+  std::string exclusive_group() const override { return "dust method"; }
+  void initialise(SphSystem& sys) override { initialise(sys.particles()); }
+  void after_drift(SphSystem& sys, Real half_dt) override { kick_predict(sys.particles(), half_dt); }
+  void compute_forces(SphSystem& sys, const RealView2& vel, const RealView1& u) override;
+  void after_kick(SphSystem& sys, Real half_dt) override { kick(sys.particles(), half_dt); }
+  Real timestep(SphSystem& sys) override;
+  std::string timestep_name() const override { return "one-fluid dust time-step (diffusion/stopping time)"; }
+  void reorder(ParticleReorder& r) override;
+  void add_diagnostics(const SphSystem& sys, Diagnostics& dg) const override;
+  void write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const override;
+  void save_state(const SphSystem& sys, io::H5File& f) const override;
+  void load_state(SphSystem& sys, const io::H5File& f) override;
 
   const DustSettings& settings() const { return s_; }
   int nspecies() const { return s_.nspecies; }
@@ -55,8 +71,6 @@ class OneFluidDust {
   /// Sets eps_j from host data (n x N, row-major; row k for the particle with
   /// id k, ids as stored in id) before initialise().
   void set_eps(const std::vector<Real>& eps, const IntView1& id);
-  /// Permutes the per-particle dust state with the particles (SphSystem reorders on every neighbour rebuild).
-  void reorder(ParticleReorder& r);
   /// Converts the initial eps_j into the evolved variable.
   void initialise(const Particles& p);
 
@@ -74,7 +88,7 @@ class OneFluidDust {
 
   /// Dusty EOS, drag times, forces, du/dt and dvar/dt for velocities vel and
   /// energies u (replaces update_eos + compute_forces of the gas engine).
-  void compute_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg, const RealView2& vel,
+  void mixture_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg, const RealView2& vel,
                       const RealView1& u);
 
   /// Dust time-step (HPL18 eq. 44 or PL15 eq. 16) over the particles; counts
@@ -106,11 +120,6 @@ class OneFluidDust {
   int tva_violations() const { return tva_violations_; }
 
   DustSnapshot snapshot(const Particles& p) const;
-
-  /// Evolves only the dust variable with the particles fixed (PL15 sec. 4.3),
-  /// with the same kick-predict-kick scheme (Heun's method for fixed
-  /// positions), dt = C0 of the dust criterion. Returns the number of steps.
-  int advance_dust_only(SphSystem& sys, Real t_end);
 
   /// The evolved variable and its predicted value / time derivative (n x N):
   /// eps_j, or for the S variable q_j = S_j / sqrt(rho) = sqrt(eps_j) (HPL18 eq. 51
@@ -145,5 +154,16 @@ class OneFluidDust {
   int tva_violations_ = 0;
   bool warned_ = false;
 };
+
+/// Registers the one-fluid dust (PL15, HPL18) on sys after set_particles(),
+/// before initialise() or on a running system (dust added after a gas-only
+/// relaxation, PL15 sec. 4.4.1); eps (n x N, row-major, row k for the particle
+/// with id k) may be empty when the settings give uniform fractions. Returns the module.
+OneFluidDust& add_one_fluid_dust(SphSystem& sys, const DustSettings& settings, const std::vector<Real>& eps = {});
+
+/// Evolves only the dust variable of sys's one-fluid dust with the particles
+/// fixed (PL15 sec. 4.3), with the same kick-predict-kick scheme (Heun's method
+/// for fixed positions), dt = C0 of the dust criterion. Returns the number of steps.
+int advance_dust_only(SphSystem& sys, Real t_end);
 
 }  // namespace mote::sph

@@ -4,9 +4,10 @@
 // forces (eq. 25, 27, 31-35) are evaluated at the drifted positions with
 // velocities and energies predicted to the end of the step; the global
 // time-step follows the Courant and force criteria plus registered hooks.
-// Dust modules and problem executables drive the gas through this class.
-// Every neighbour rebuild reorders the particles into cell order (locality):
-// all per-particle state, here and in the dust module, is permuted, and the
+// The engine knows no dust: physics modules (sph_module.hpp: one-fluid dust,
+// two-fluid drag) register with add_module() and are called at fixed points
+// of the step. Every neighbour rebuild reorders the particles into cell order
+// (locality): all per-particle state, here and in the modules, is permuted, and the
 // particle Views are replaced, so hold no copies of them across a step; the
 // id identifies a particle. Snapshots list the particles in id order,
 // checkpoints in storage order (which a restart continues from).
@@ -20,15 +21,13 @@
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
 #include "mote/sph/config.hpp"
-#include "mote/sph/dust_settings.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/neighbours.hpp"
 #include "mote/sph/particles.hpp"
 #include "mote/sph/reorder.hpp"
+#include "mote/sph/sph_module.hpp"
 
 namespace mote::sph {
-
-class OneFluidDust;
 
 /// Particle data on the host, for set-up (x and v are n x dim, row-major).
 struct ParticleSetup {
@@ -52,9 +51,10 @@ struct Diagnostics {
   Real momentum[3] = {0.0, 0.0, 0.0};
   Real momentum_abs = 0.0;  ///< sum m |v| (scale for relative momentum errors)
   Real kinetic = 0.0;
-  Real thermal = 0.0;         ///< sum m u (adiabatic runs)
-  Real energy = 0.0;          ///< kinetic + thermal (PL15 eq. 40; thermal = sum m (1 - eps) u with dust)
-  Real v_rms = 0.0;           ///< mass-weighted rms velocity
+  Real thermal = 0.0;  ///< sum m u (adiabatic runs)
+  Real energy = 0.0;   ///< kinetic + thermal (PL15 eq. 40; thermal = sum m (1 - eps) u with dust)
+  Real v_rms = 0.0;    ///< mass-weighted rms velocity
+  // Filled by a dust module (SphModule::add_diagnostics):
   Real dust_mass = 0.0;       ///< sum m eps (one-fluid dust)
   Real dust_floored = 0.0;    ///< dust mass added by the negative-eps floor so far (= negative mass removed)
   Real dust_projected = 0.0;  ///< dust mass the S-variable projection removed so far (OneFluidDust::kick)
@@ -76,13 +76,19 @@ class SphSystem {
   /// One kick-drift-kick step; returns the dt taken.
   Real step();
 
-  /// Switches on the one-fluid dust (PL15, HPL18) after set_particles(), either
-  /// before initialise() or on a running system (dust added after a gas-only
-  /// relaxation, PL15 sec. 4.4.1); eps (n x N, row-major, row k for the
-  /// particle with id k) may be empty when the settings give uniform fractions.
-  void set_dust(const DustSettings& settings, const std::vector<Real>& eps = {});
-  OneFluidDust* dust() { return dust_.get(); }
-  const OneFluidDust* dust() const { return dust_.get(); }
+  /// Registers a physics module after set_particles(), either before
+  /// initialise() or on a running system (e.g. dust added after a gas-only
+  /// relaxation, PL15 sec. 4.4.1: the module is initialised and the forces and
+  /// time-step recomputed). At most one module may replace the gas forces.
+  void add_module(std::shared_ptr<SphModule> module);
+  /// The registered module of type M, or nullptr.
+  template <class M>
+  M* module() const {
+    for (const auto& m : modules_)
+      if (auto* found = dynamic_cast<M*>(m.get())) return found;
+    return nullptr;
+  }
+  const std::vector<std::shared_ptr<SphModule>>& modules() const { return modules_; }
 
   /// Steps until time t_end (the last step is shortened to land on it);
   /// after_step, when given, is called after every step (progress output).
@@ -100,7 +106,7 @@ class SphSystem {
   /// Rebuilds the neighbour list now (as a step does when the list expires),
   /// reordering the particles into cell order.
   void rebuild_neighbours();
-  /// Permutes every per-particle View (particles, divv_old, dust) into order:
+  /// Permutes every per-particle View (particles, divv_old, modules) into order:
   /// new index i takes the particle at old index order(i).
   void reorder_particles(const View<int*>& order);
 
@@ -110,6 +116,7 @@ class SphSystem {
   Particles& particles() { return p_; }
   const Particles& particles() const { return p_; }
   SphConfig& config() { return cfg_; }
+  const SphConfig& config() const { return cfg_; }
   const Box& box() const { return box_; }
   const NeighbourList& neighbours() const { return nl_; }
   Real time() const { return time_; }
@@ -152,7 +159,8 @@ class SphSystem {
   RealView1 divv_old_;
   std::vector<ExternalForce> external_;
   std::vector<TimestepConstraint> dt_hooks_;
-  std::shared_ptr<OneFluidDust> dust_;
+  std::vector<std::shared_ptr<SphModule>> modules_;
+  SphModule* gas_forces_ = nullptr;  ///< the module that replaces the gas EOS and forces, if any
   ParticleReorder reorder_;
   Real time_ = 0.0;
   Real dt_next_ = 0.0;

@@ -1,12 +1,13 @@
 // Set-ups of the one-fluid dust problems of PL15 sec. 4.1-4.3 (see
-// include/mote/sph/dust_problems.hpp).
-#include "mote/sph/dust_problems.hpp"
+// include/mote/setups/dust_problems.hpp).
+#include "mote/setups/dust_problems.hpp"
 
 #include <cmath>
 
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 
 namespace mote::sph {
 
@@ -37,6 +38,7 @@ DustProblem tube(SphConfig cfg, const DustSettings& dust, Real lo, Real hi) {
 
 void declare_dust_problem(core::DeckSchema& schema, const std::string& problem, DragLaw drag, bool uniform_eps) {
   DustSettings::declare(schema);
+  schema.rule(requires_dust_method(problem, {"diffusion", "multigrain"}));
   const std::string want = drag == DragLaw::ConstantK ? "constant_K"
                            : drag == DragLaw::Epstein ? "epstein"
                                                       : "constant_ts";
@@ -64,7 +66,7 @@ std::unique_ptr<SphSystem> DustProblem::make_system() const {
   }
   auto sys = std::make_unique<SphSystem>(cfg, box);
   sys->set_particles(s);
-  sys->set_dust(dust, eps);
+  add_one_fluid_dust(*sys, dust, eps);
   return sys;
 }
 

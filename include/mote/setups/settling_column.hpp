@@ -46,6 +46,12 @@ struct RelaxedColumn {
 
   /// A system with these particles and the vertical gravity; dust not yet set.
   std::unique_ptr<SphSystem> make_system() const;
+  /// The two-fluid column (VALIDATION B4): each relaxed particle's mass split
+  /// into a gas particle of (1 - eps) of it and a dust particle (type kDust, at
+  /// rest, no thermal energy) of eps of it, displaced by half the lattice
+  /// spacing along x; rho_g and rho_d are then those of the one-fluid column
+  /// with dust fraction eps.
+  std::unique_ptr<SphSystem> make_two_fluid_system(Real eps) const;
 };
 
 /// Sets up the lattice and relaxes it gas-only to c.relax_time; cfg supplies

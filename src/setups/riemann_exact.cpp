@@ -1,5 +1,5 @@
 // Exact Riemann solver for an ideal gas (Toro 2009, sec. 4.2-4.5).
-#include "mote/sph/riemann_exact.hpp"
+#include "mote/setups/riemann_exact.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
 // Disc column of the dust settling test, PL15 sec. 4.4.1 eq. 53-57 (see
-// include/mote/sph/settling_column.hpp).
-#include "mote/sph/settling_column.hpp"
+// include/mote/setups/settling_column.hpp).
+#include "mote/setups/settling_column.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
+#include "mote/setups/lattice.hpp"
 #include "mote/sph/external.hpp"
-#include "mote/sph/lattice.hpp"
 
 namespace mote::sph {
 
@@ -23,6 +23,30 @@ std::unique_ptr<SphSystem> RelaxedColumn::make_system() const {
   auto sys = std::make_unique<SphSystem>(cfg, box);
   sys->set_particles(particles);
   sys->add_external_force(disc_vertical_gravity(column.gm, column.r0));  // eq. 53
+  return sys;
+}
+
+std::unique_ptr<SphSystem> RelaxedColumn::make_two_fluid_system(Real eps) const {
+  if (!(eps > 0.0 && eps < 1.0)) throw std::invalid_argument("settling column: the dust fraction must be in (0, 1)");
+  ParticleSetup s = particles;
+  const int n = particles.size(), dim = particles.dim;
+  s.type.assign(n, kGas);
+  s.u.resize(n, 0.0);  // isothermal: the set-up may leave u empty
+  for (int i = 0; i < n; ++i) s.m[i] *= 1.0 - eps;
+  const Real shift = 0.5 * column.width / column.nx;
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < dim; ++d) {
+      s.x.push_back(particles.x[dim * i + d] + (d == 0 ? shift : 0.0));  // wrapped by set_particles
+      s.v.push_back(0.0);
+    }
+    s.m.push_back(eps * particles.m[i]);
+    s.h.push_back(particles.h[i]);
+    s.u.push_back(0.0);
+    s.type.push_back(kDust);
+  }
+  auto sys = std::make_unique<SphSystem>(cfg, box);
+  sys->set_particles(s);
+  sys->add_external_force(disc_vertical_gravity(column.gm, column.r0));  // eq. 53, on gas and dust
   return sys;
 }
 

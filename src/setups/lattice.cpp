@@ -1,5 +1,5 @@
 // Lattices, stretch mapping (PL15 eq. 54-55) and equal masses; see lattice.hpp.
-#include "mote/sph/lattice.hpp"
+#include "mote/setups/lattice.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,69 @@
+// Benchmarks of the two-fluid SPH dust (LAB15): on the 3D accelerated
+// dustybox of VALIDATION B2 (n^3 gas + n^3 dust particles on interleaved cubic
+// lattices in [-2, 2)^3, M4, h_fact 1.2, eps = 0.01, constant t_s = 1e-3, so
+// dt / t_s ~ 140), the cost of one engine step (density, gas forces, the two
+// half-step drag updates) and of one drag update alone (moment tensors, the
+// dust and gas pair sums, the apply). The drag's share of a step is
+// 2 x drag / step. Args: n per direction.
+//   bench_sph_two_fluid --benchmark_out=sph_two_fluid.json --benchmark_out_format=json
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "bench_main.hpp"
+#include "mote/setups/dustybox.hpp"
+#include "mote/sph/two_fluid_dust.hpp"
+
+namespace {
+
+using mote::Real;
+using namespace mote::sph;
+
+std::unique_ptr<SphSystem> make_box(int n) {
+  DustyBox box;
+  box.dim = 3;
+  box.n = n;
+  SphConfig cfg;
+  cfg.dim = 3;
+  cfg.eos = EosType::Isothermal;
+  cfg.cs_iso = 1.0;
+  DustSettings ds;
+  ds.method = DustMethod::TwoFluid;
+  ds.drag = DragLaw::ConstantStoppingTime;
+  ds.stopping_time = {1e-3};
+  auto sys = make_dustybox(box, cfg, ds);
+  sys->initialise();
+  sys->step();  // warm up (list sizes)
+  return sys;
+}
+
+void BM_TwoFluidStep(benchmark::State& state) {
+  auto sys = make_box(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    sys->step();
+    Kokkos::fence();
+  }
+  state.counters["particles"] = sys->particles().n;
+  state.counters["dt_over_ts"] = sys->next_dt() / 1e-3;
+  state.counters["particle_updates_per_s"] =
+      benchmark::Counter(static_cast<double>(sys->particles().n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+void BM_TwoFluidDragUpdate(benchmark::State& state) {
+  auto sys = make_box(static_cast<int>(state.range(0)));
+  auto& dust = *sys->module<TwoFluidDust>();
+  const Real half = 0.5 * sys->next_dt();
+  for (auto _ : state) {
+    dust.begin_step(*sys, 2.0 * half);
+    dust.apply_drag(*sys, half);
+    Kokkos::fence();
+  }
+  state.counters["particles"] = sys->particles().n;
+  state.counters["particle_updates_per_s"] =
+      benchmark::Counter(static_cast<double>(sys->particles().n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_TwoFluidStep)->Arg(20)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TwoFluidDragUpdate)->Arg(20)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

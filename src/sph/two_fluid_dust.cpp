@@ -1,0 +1,466 @@
+// Two-fluid dust with the improved semi-implicit pairwise drag (LAB15 sec. 2,
+// eq. 17-22, 27-30, with the moment normalisation and the exact energy
+// bookkeeping described in include/mote/sph/two_fluid_dust.hpp).
+#include "mote/sph/two_fluid_dust.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "mote/core/loops.hpp"
+#include "mote/io/h5_file.hpp"
+#include "mote/sph/kernels.hpp"
+
+namespace mote::sph {
+
+namespace two_fluid_detail {
+
+/// Relaxation time of v_DG for the pair (dust species j, densities rho_d,
+/// rho_g, gas sound speed cs): the shared laws of dust_drag.hpp.
+struct ConstantStoppingTime {
+  RealView1 ts;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real, Real, Real) const { return ts(j); }
+};
+struct ConstantDragCoefficient {
+  RealView1 k;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real rho_d, Real rho_g, Real) const {
+    return rho_d * rho_g / (k(j) * (rho_d + rho_g));
+  }
+};
+struct EpsteinDrag {
+  RealView1 size;
+  Real rho_grain, gamma;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real rho_d, Real rho_g, Real cs) const {
+    return ts_epstein(rho_grain, size(j), rho_d + rho_g, cs, gamma);
+  }
+};
+
+/// The pair (dust i, gas k) of LAB15 eq. 17-21 and 27-28.
+template <int Dim, class K, class Law>
+struct DragPair {
+  RealView2 x, v, v0;
+  RealView1 m, h, rho, cs;
+  RealView2 tinv;
+  IntView1 type;
+  Box box;
+  Law law;
+  Real dt, lambda_on;
+
+  /// For the pair (dust i, gas k; image code of k in i's list): the weight
+  /// w = m_k W(r_ik, h_k) / rho_k, S_ik . r^ (eq. 21), the direction
+  /// e = T_i^-1 r^ of the impulse, and v~_ik . e.
+  KOKKOS_INLINE_FUNCTION bool terms(int i, int k, int img_from_i, Real& w, Real& sr, Real e[3], Real& ve) const {
+    if (!(tinv(i, 0) > 0.0)) return false;  // a dust particle outside all gas supports feels no drag
+    Real rhat[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+    for (int d = 0; d < Dim; ++d) {
+      rhat[d] = box.separation(x(i, d), x(k, d), img_from_i, d);
+      r2 += rhat[d] * rhat[d];
+    }
+    const Real hinv = 1.0 / h(k);
+    const Real q = math::sqrt(r2) * hinv;
+    if (!(r2 > 0.0) || q >= K::radius()) return false;
+    Real f, df;
+    K::shape(q, f, df);
+    w = m(k) * K::norm() * ipow<Dim>(hinv) * f / rho(k);
+    const Real rinv = 1.0 / math::sqrt(r2);
+    for (int d = 0; d < Dim; ++d) rhat[d] *= rinv;
+    const Real eps = rho(i) / rho(k);
+    const Real ts = law(type(i) - kDust, rho(i), rho(k), cs(k));
+    const Real xi = -math::expm1(-dt / ts) / (1.0 + eps);                 // eq. 6
+    const Real lambda = lambda_on * ((dt + ts) * xi - dt / (1.0 + eps));  // eq. 19
+    sr = 0.0;
+    ve = 0.0;
+    for (int d = 0; d < Dim; ++d) {
+      Real ed = 0.0;
+      for (int c = 0; c < Dim; ++c) ed += tinv(i, 3 * d + c) * rhat[c];
+      e[d] = ed;
+    }
+    for (int d = 0; d < Dim; ++d) {
+      const Real vdg = v(i, d) - v(k, d);
+      const Real adg = ((v(i, d) - v0(i, d)) - (v(k, d) - v0(k, d))) / dt;  // non-drag a_DG over the step
+      sr += (xi * vdg - lambda * adg) * rhat[d];                            // eq. 21
+      ve += vdg * e[d];
+    }
+    return true;
+  }
+};
+
+/// Inverse of the symmetric Dim x Dim moment t (row-major, 3 x 3 storage), or
+/// (Dim / trace) I where t is nearly singular (gas neighbours on a line or plane).
+template <int Dim>
+KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
+  for (int c = 0; c < 9; ++c) out[c] = 0.0;
+  Real trace = 0.0;
+  for (int d = 0; d < Dim; ++d) trace += t[4 * d];
+  if (!(trace > 0.0)) return;
+  const Real scale = trace / Dim;
+  Real det = 0.0;
+  if (Dim == 1) {
+    out[0] = 1.0 / t[0];
+    return;
+  }
+  if (Dim == 2) {
+    det = t[0] * t[4] - t[1] * t[3];
+    if (det > 1e-6 * scale * scale) {
+      out[0] = t[4] / det;
+      out[1] = -t[1] / det;
+      out[3] = -t[3] / det;
+      out[4] = t[0] / det;
+      return;
+    }
+  } else {
+    const Real c00 = t[4] * t[8] - t[5] * t[7], c01 = t[5] * t[6] - t[3] * t[8], c02 = t[3] * t[7] - t[4] * t[6];
+    det = t[0] * c00 + t[1] * c01 + t[2] * c02;
+    if (det > 1e-6 * scale * scale * scale) {
+      out[0] = c00 / det;
+      out[1] = (t[2] * t[7] - t[1] * t[8]) / det;
+      out[2] = (t[1] * t[5] - t[2] * t[4]) / det;
+      out[3] = c01 / det;
+      out[4] = (t[0] * t[8] - t[2] * t[6]) / det;
+      out[5] = (t[2] * t[3] - t[0] * t[5]) / det;
+      out[6] = c02 / det;
+      out[7] = (t[1] * t[6] - t[0] * t[7]) / det;
+      out[8] = (t[0] * t[4] - t[1] * t[3]) / det;
+      return;
+    }
+  }
+  for (int d = 0; d < Dim; ++d) out[4 * d] = 1.0 / scale;  // LAB15's isotropic nu / N_i
+}
+
+template <int Dim, class K, class Law>
+void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real lambda_on) {
+  const Particles& p = sys.particles();
+  const NeighbourList& nl = sys.neighbours();
+  const int n = p.n;
+  const auto offsets = nl.offsets;
+  const auto neigh = nl.neigh;
+  const auto image = nl.image;
+  const auto type = p.type;
+  const auto x = p.x;
+  const auto m = p.m;
+  const auto h = p.h;
+  const auto rho = p.rho;
+  const auto tinv = dust.tinv;
+  const auto dv = dust.dv;
+  const auto du = dust.du;
+  const Box box = sys.box();
+
+  // Pass 1: T_i = sum_k^gas (m_k / rho_k) W(r_ik, h_k) r^ r^T and its inverse
+  // (for isotropic neighbours T_i = (N_i / nu) I, eq. 30).
+  par_for(
+      "sph::two_fluid_moment", 0, n, KOKKOS_LAMBDA(int i) {
+        Real t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, inv[9];
+        if (type(i) != kGas) {
+          for (int j = offsets(i); j < offsets(i + 1); ++j) {
+            const int k = neigh(j);
+            if (type(k) != kGas) continue;
+            Real r[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              r[d] = box.separation(x(i, d), x(k, d), image(j), d);
+              r2 += r[d] * r[d];
+            }
+            if (!(r2 > 0.0)) continue;
+            const Real hinv = 1.0 / h(k);
+            Real f, df;
+            K::shape(math::sqrt(r2) * hinv, f, df);
+            const Real wk = m(k) / rho(k) * K::norm() * ipow<Dim>(hinv) * f / r2;
+            for (int d = 0; d < Dim; ++d)
+              for (int c = 0; c < Dim; ++c) t[3 * d + c] += wk * r[d] * r[c];
+          }
+        }
+        invert_moment<Dim>(t, inv);
+        for (int c = 0; c < 9; ++c) tinv(i, c) = inv[c];
+      });
+
+  const DragPair<Dim, K, Law> pair{p.x,  p.v,    dust.v_start, p.m, p.h, p.rho,    p.cs,
+                                   tinv, p.type, box,          law, dt,  lambda_on};
+  // Pass 2: the dust, eq. 27.
+  par_for(
+      "sph::two_fluid_drag_dust", 0, n, KOKKOS_LAMBDA(int i) {
+        Real acc[3] = {0.0, 0.0, 0.0};
+        if (type(i) != kGas) {
+          for (int j = offsets(i); j < offsets(i + 1); ++j) {
+            const int k = neigh(j);
+            Real w, sr, e[3], ve;
+            if (type(k) != kGas || !pair.terms(i, k, image(j), w, sr, e, ve)) continue;
+            for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
+          }
+        }
+        for (int d = 0; d < Dim; ++d) dv(i, d) = acc[d];
+        du(i) = 0.0;
+      });
+  // Pass 3: the gas, eq. 28, and its heating (eq. 29 made exact, see above).
+  par_for(
+      "sph::two_fluid_drag_gas", 0, n, KOKKOS_LAMBDA(int k) {
+        if (type(k) != kGas) return;
+        Real acc[3] = {0.0, 0.0, 0.0};
+        Real work = 0.0;  // sum_i m_i w_ik (S_ik . r^) (v~_ik + Dv_i / 2) . e_ik
+        for (int j = offsets(k); j < offsets(k + 1); ++j) {
+          const int i = neigh(j);
+          if (type(i) == kGas) continue;
+          // The pair seen from i: the image code of k in i's list is the opposite shift.
+          Real w, sr, e[3], ve;
+          if (!pair.terms(i, k, mirror_image(image(j)), w, sr, e, ve)) continue;
+          const Real mw = m(i) * w;
+          Real dvi_e = 0.0;
+          for (int d = 0; d < Dim; ++d) {
+            acc[d] += mw / m(k) * sr * e[d];
+            dvi_e += dv(i, d) * e[d];
+          }
+          work += mw * sr * (ve + 0.5 * dvi_e);
+        }
+        Real dv2 = 0.0;
+        for (int d = 0; d < Dim; ++d) {
+          dv(k, d) = acc[d];
+          dv2 += acc[d] * acc[d];
+        }
+        du(k) = work / m(k) - 0.5 * dv2;
+      });
+  // Pass 4: apply; the heating total stays on the device.
+  const auto v = p.v;
+  const auto u = p.u;
+  const bool energy = sys.config().eos == EosType::Adiabatic;
+  const auto heat_step = dust.heat_step;
+  const auto heat_total = dust.heat_total;
+  par_reduce(
+      "sph::two_fluid_drag_apply", 0, n,
+      KOKKOS_LAMBDA(int a, Real& s) {
+        for (int d = 0; d < Dim; ++d) v(a, d) += dv(a, d);
+        if (energy) u(a) += du(a);
+        s += m(a) * du(a);
+      },
+      heat_step);
+  par_for(
+      "sph::two_fluid_heating_total", 0, 1, KOKKOS_LAMBDA(int) { heat_total() += heat_step(); });
+}
+
+template <class Law>
+struct DragDispatch {
+  TwoFluidDust& dust;
+  SphSystem& sys;
+  Real dt;
+  Law law;
+  Real lambda_on;
+  template <int Dim, class K>
+  void operator()() {
+    apply_drag_impl<Dim, K, Law>(dust, sys, dt, law, lambda_on);
+  }
+};
+
+template <class Law>
+void run_drag(TwoFluidDust& dust, SphSystem& sys, Real dt, const Law& law, Real lambda_on) {
+  DragDispatch<Law> f{dust, sys, dt, law, lambda_on};
+  dispatch(sys.particles().dim, sys.config().kernel, f);
+}
+
+}  // namespace two_fluid_detail
+
+TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) : s_(settings) {
+  s_.validate();
+  const Particles& p = sys.particles();
+  const int ns = s_.nspecies;
+  auto type = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.type);
+  std::vector<long long> count(ns + 1, 0);
+  for (int a = 0; a < p.n; ++a) {
+    const int t = type(a);
+    if (t < kGas || t > kDust + ns - 1)
+      throw std::invalid_argument("dust: particle type " + std::to_string(t) + " is neither gas nor one of the " +
+                                  std::to_string(ns) + " dust species (types 1.." + std::to_string(ns) + ")");
+    ++count[t];
+  }
+  if (count[kGas] == 0) throw std::invalid_argument("dust: two-fluid dust needs gas particles");
+  for (int j = 0; j < ns; ++j)
+    if (count[kDust + j] == 0)
+      throw std::invalid_argument("dust: two-fluid dust species " + std::to_string(j) + " has no particles");
+  v_start = RealView2("sph::two_fluid_v_start", p.n, p.dim);
+  dv = RealView2("sph::two_fluid_dv", p.n, p.dim);
+  du = RealView1("sph::two_fluid_du", p.n);
+  tinv = RealView2("sph::two_fluid_moment_inverse", p.n, 9);
+  kdrag = RealView1("sph::two_fluid_K", ns);
+  size = RealView1("sph::two_fluid_size", ns);
+  tstop = RealView1("sph::two_fluid_ts", ns);
+  heat_step = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_step");
+  heat_total = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_total");
+  auto hk = Kokkos::create_mirror_view(kdrag);
+  auto hs = Kokkos::create_mirror_view(size);
+  auto ht = Kokkos::create_mirror_view(tstop);
+  for (int j = 0; j < ns; ++j) {
+    hk(j) = s_.drag == DragLaw::ConstantK ? s_.species_value(s_.k_drag, j) : 1.0;
+    hs(j) = s_.drag == DragLaw::Epstein ? s_.species_value(s_.sizes, j) : 0.0;
+    ht(j) = s_.drag == DragLaw::ConstantStoppingTime ? s_.species_value(s_.stopping_time, j) : 0.0;
+  }
+  Kokkos::deep_copy(kdrag, hk);
+  Kokkos::deep_copy(size, hs);
+  Kokkos::deep_copy(tstop, ht);
+}
+
+namespace {
+
+/// v_start = v, as a kernel (a deep copy would count as traffic in the device-traffic tests).
+void keep_velocity(const RealView2& v_start, const Particles& p) {
+  const auto v = p.v;
+  const int dim = p.dim;
+  par_for(
+      "sph::two_fluid_keep_velocity", 0, p.n, KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < dim; ++d) v_start(i, d) = v(i, d);
+      });
+}
+
+}  // namespace
+
+void TwoFluidDust::begin_step(SphSystem& sys, Real) { keep_velocity(v_start, sys.particles()); }
+
+void TwoFluidDust::after_first_kick(SphSystem& sys, Real half_dt) {
+  apply_drag(sys, half_dt);
+  keep_velocity(v_start, sys.particles());  // the start of the second half
+}
+
+void TwoFluidDust::after_kick(SphSystem& sys, Real half_dt) { apply_drag(sys, half_dt); }
+
+void TwoFluidDust::apply_drag(SphSystem& sys, Real dt) {
+  using namespace two_fluid_detail;
+  const Real lambda_on = s_.drag_scheme == TwoFluidDrag::Improved ? 1.0 : 0.0;
+  const Real gamma = sys.config().eos == EosType::Adiabatic ? sys.config().gamma : 1.0;
+  switch (s_.drag) {
+    case DragLaw::ConstantStoppingTime:
+      run_drag(*this, sys, dt, ConstantStoppingTime{tstop}, lambda_on);
+      break;
+    case DragLaw::ConstantK:
+      run_drag(*this, sys, dt, ConstantDragCoefficient{kdrag}, lambda_on);
+      break;
+    case DragLaw::Epstein:
+      run_drag(*this, sys, dt, EpsteinDrag{size, s_.rho_grain, gamma}, lambda_on);
+      break;
+  }
+}
+
+Real TwoFluidDust::drag_heating() const {
+  Real h = 0.0;
+  Kokkos::deep_copy(h, heat_total);
+  return h;
+}
+
+Real TwoFluidDust::timestep(SphSystem& sys) {
+  const Particles& p = sys.particles();
+  const auto type = p.type;
+  const auto h = p.h;
+  const auto a = p.a;
+  const int dim = p.dim;
+  const Real c_force = sys.config().c_force;
+  Real dt = 1e300;
+  par_reduce(
+      "sph::two_fluid_timestep", 0, p.n,
+      KOKKOS_LAMBDA(int i, Real& dmin) {
+        if (type(i) == kGas) return;
+        Real a2 = 0.0;
+        for (int d = 0; d < dim; ++d) a2 += a(i, d) * a(i, d);
+        if (a2 > 0.0) {
+          const Real t = c_force * math::sqrt(h(i) / math::sqrt(a2));
+          dmin = t < dmin ? t : dmin;
+        }
+      },
+      Kokkos::Min<Real>(dt));
+  return dt;
+}
+
+void TwoFluidDust::reorder(ParticleReorder& r) {
+  r.apply(v_start);
+  r.apply(dv);
+  r.apply(du);
+  r.apply(tinv);
+}
+
+namespace {
+
+/// Mass, momentum and kinetic energy of the gas (dust = false) or of all dust particles.
+struct PhaseSums {
+  Real mass = 0.0, momentum[3] = {0.0, 0.0, 0.0}, kinetic = 0.0;
+};
+
+PhaseSums phase_sums(const Particles& p, bool dust) {
+  const auto type = p.type;
+  const auto m = p.m;
+  const auto v = p.v;
+  const int dim = p.dim;
+  PhaseSums s;
+  par_reduce(
+      "sph::two_fluid_mass", 0, p.n,
+      KOKKOS_LAMBDA(int i, Real& acc) { acc += ((type(i) != kGas) == dust) ? m(i) : 0.0; }, s.mass);
+  for (int d = 0; d < dim; ++d)
+    par_reduce(
+        "sph::two_fluid_momentum", 0, p.n,
+        KOKKOS_LAMBDA(int i, Real& acc) { acc += ((type(i) != kGas) == dust) ? m(i) * v(i, d) : 0.0; }, s.momentum[d]);
+  par_reduce(
+      "sph::two_fluid_kinetic", 0, p.n,
+      KOKKOS_LAMBDA(int i, Real& acc) {
+        Real v2 = 0.0;
+        for (int d = 0; d < dim; ++d) v2 += v(i, d) * v(i, d);
+        acc += ((type(i) != kGas) == dust) ? 0.5 * m(i) * v2 : 0.0;
+      },
+      s.kinetic);
+  return s;
+}
+
+}  // namespace
+
+void TwoFluidDust::add_diagnostics(const SphSystem& sys, Diagnostics& dg) const {
+  dg.dust_mass = phase_sums(sys.particles(), true).mass;
+}
+
+std::vector<io::Diagnostic> TwoFluidDust::history(const SphSystem& sys) const {
+  const PhaseSums gas = phase_sums(sys.particles(), false), dust = phase_sums(sys.particles(), true);
+  return {{"gas_momentum_x", gas.momentum[0]},
+          {"gas_momentum_y", gas.momentum[1]},
+          {"gas_momentum_z", gas.momentum[2]},
+          {"dust_momentum_x", dust.momentum[0]},
+          {"dust_momentum_y", dust.momentum[1]},
+          {"dust_momentum_z", dust.momentum[2]},
+          {"gas_kinetic", gas.kinetic},
+          {"dust_kinetic", dust.kinetic},
+          {"dust_mass", dust.mass},
+          {"drag_heating", drag_heating()}};
+}
+
+namespace {
+
+/// The density and sound speed of the last force evaluation: the drag after
+/// the first half kick of the next step uses them (the engine recomputes them
+/// only after the drift), so a restart needs them to continue bit for bit.
+const char* const kSavedFields[] = {"/state/two_fluid_rho", "/state/two_fluid_cs"};
+
+}  // namespace
+
+void TwoFluidDust::save_state(const SphSystem& sys, io::H5File& f) const {
+  const Particles& p = sys.particles();
+  const io::Block block = io::Block::whole({static_cast<hsize_t>(p.n)});
+  const RealView1 fields[] = {p.rho, p.cs};
+  for (int k = 0; k < 2; ++k) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), fields[k]);
+    f.write(kSavedFields[k], block, h.data());
+  }
+  const Real heating = drag_heating();
+  f.write("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating);
+}
+
+void TwoFluidDust::load_state(SphSystem& sys, const io::H5File& f) {
+  const Particles& p = sys.particles();
+  const io::Block block = io::Block::whole({static_cast<hsize_t>(p.n)});
+  const RealView1 fields[] = {p.rho, p.cs};
+  for (int k = 0; k < 2; ++k) {
+    auto h = Kokkos::create_mirror_view(fields[k]);
+    f.read(kSavedFields[k], block, h.data());
+    Kokkos::deep_copy(fields[k], h);
+  }
+  Real heating = 0.0;
+  f.read("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating);
+  Kokkos::deep_copy(heat_total, heating);
+}
+
+TwoFluidDust& add_two_fluid_dust(SphSystem& sys, const DustSettings& settings) {
+  if (sys.particles().n == 0) throw std::runtime_error("sph: two-fluid dust added before set_particles()");
+  auto dust = std::make_shared<TwoFluidDust>(settings, sys);
+  TwoFluidDust& module = *dust;
+  sys.add_module(std::move(dust));
+  return module;
+}
+
+}  // namespace mote::sph

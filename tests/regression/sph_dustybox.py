@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""sph_dustybox end to end (LAB15 sec. 3, VALIDATION B1, B3): the deck runs
+with the engine's time-step (the gas Courant condition, dt = 0.011) and
+t_s = 0.1, 1e-3 and 1e-5 (dt / t_s = 0.1, 11 and 1100), at eps = 0.01 and 1,
+with the improved drag (LAB15 eq. 17-19): check.py finds the dust velocity
+within 1e-3 of eq. 31 and the momentum budget exact to 1e-12; the original
+scheme (eq. 4-6) at dt / t_s = 11 has its error reported; one figure of both.
+
+usage: sph_dustybox.py EXE WORKDIR
+"""
+import os
+import shutil
+import sys
+
+from harness import ROOT, Checks, run
+
+exe, work = sys.argv[1], sys.argv[2]
+shutil.rmtree(work, ignore_errors=True)
+pdir = os.path.join(ROOT, "problems", "sph_dustybox")
+deck = os.path.join(pdir, "sph_dustybox.toml")
+checks = Checks()
+check = ["/usr/bin/python3", os.path.join(pdir, "check.py")]
+for eps in (0.01, 1.0):
+    for ts in (0.1, 1e-3, 1e-5):
+        out = os.path.join(work, f"eps{eps:g}_ts{ts:g}")
+        run([exe, deck, f"output.dir={out}", f"dust.stopping_time=[{ts!r}]", f"dustybox.eps={eps!r}"])
+        c = run(check + [out, "--ts", repr(ts), "--eps", repr(eps), "--max-error", "1e-3"], expect=None)
+        print(c.stdout.strip())
+        checks.check(c.returncode == 0, f"improved drag, eps = {eps:g}, t_s = {ts:g}: v_D against eq. 31")
+old = os.path.join(work, "original_ts0.001")
+run([exe, deck, f"output.dir={old}", 'dust.drag_scheme="original"'])
+png = os.path.join(work, "dustybox.png")
+c = run(check + [os.path.join(work, "eps0.01_ts0.001"), old, "--ts", "1e-3", "--labels", "improved (eq. 17-19)",
+                 "original (eq. 4-6)", "--plot", png], expect=None)
+print(c.stdout.strip())
+checks.check(c.returncode == 0 and os.path.getsize(png) > 10000, "the figure of both schemes")
+sys.exit(checks.finish())
