@@ -25,12 +25,12 @@
 #include <random>
 
 #include "mote/core/units.hpp"
+#include "mote/setups/lattice.hpp"
+#include "mote/setups/settling_column.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/external.hpp"
 #include "mote/sph/forces.hpp"
-#include "mote/setups/lattice.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
-#include "mote/setups/settling_column.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

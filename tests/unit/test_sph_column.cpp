@@ -11,8 +11,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "mote/sph/external.hpp"
 #include "mote/setups/lattice.hpp"
+#include "mote/sph/external.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {

@@ -20,8 +20,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mote/sph/one_fluid_dust.hpp"
 #include "mote/setups/settling_column.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mote/sph/one_fluid_dust.hpp"
 #include "mote/setups/riemann_exact.hpp"
+#include "mote/sph/one_fluid_dust.hpp"
 #include "sph_dust_problems.hpp"
 
 namespace {

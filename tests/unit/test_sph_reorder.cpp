@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "mote/sph/density.hpp"
 #include "mote/setups/lattice.hpp"
+#include "mote/sph/density.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_simulation.hpp"
 

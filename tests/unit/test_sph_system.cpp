@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "mote/sph/external.hpp"
 #include "mote/setups/lattice.hpp"
+#include "mote/sph/external.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {
