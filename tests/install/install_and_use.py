@@ -2,7 +2,7 @@
 """mote installs as a CMake package that a user's own problem builds against:
 `cmake --install` of this build into a fresh prefix puts headers, libmote, the
 problem executables (and their decks) and moteConfig.cmake there; the project
-in tests/install (my_pulse, a copy of gaussian_pulse with another name) is
+in tests/install (my_pulse, gaussian_pulse's source under another name) is
 configured with find_package(mote) against that prefix alone, built with
 add_problem() and run for one step; the installed gaussian_pulse runs a step
 of its installed deck and the installed check.py reads it (with the python/mote
@@ -64,7 +64,7 @@ exe = os.path.join(build, "bin", "my_pulse")
 out = os.path.join(work, "run")
 p = timed("run", [exe, os.path.join(here, "my_pulse.toml"), f"output.dir={out}", "run.max_steps=1", "run.progress_interval=0"],
           expect=None)
-checks.check(p.returncode == 0 and "problem my_pulse" in p.stdout,
+checks.check(p.returncode == 0 and "problem gaussian_pulse" in p.stdout,
              f"my_pulse runs a step (exit {p.returncode})" + ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-2000:]}"))
 checks.check(all(os.path.exists(os.path.join(out, f)) for f in ("snapshot_00001.h5", "snapshot_00001.xmf", "snapshots.xmf")),
              "my_pulse wrote its snapshots and XDMF")
