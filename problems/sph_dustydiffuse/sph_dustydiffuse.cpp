@@ -3,7 +3,7 @@
 // constant stopping time t_s, eps(r, 0) = eps0 (1 - (r / r_c)^2) for r < r_c
 // (eq. 52); the particles stay fixed and only the dust equation is evolved
 // (PL15 eq. 43, or eq. 26 and 30), each step one kick-predict-kick dust step of
-// OneFluidDust::advance_dust_only. check.py compares eps with the self-similar
+// sph::advance_dust_only. check.py compares eps with the self-similar
 // solution eq. 51.
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
