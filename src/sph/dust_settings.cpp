@@ -184,6 +184,23 @@ DustSettings DustSettings::from_deck(const core::Deck& d) {
   return s;
 }
 
+SpeciesDrag DustSettings::species_drag(const std::string& label) const {
+  SpeciesDrag out{RealView1(label + "_K", nspecies), RealView1(label + "_size", nspecies),
+                  RealView1(label + "_tstop", nspecies)};
+  auto hk = Kokkos::create_mirror_view(out.k_drag);
+  auto hs = Kokkos::create_mirror_view(out.size);
+  auto ht = Kokkos::create_mirror_view(out.stopping_time);
+  for (int j = 0; j < nspecies; ++j) {
+    hk(j) = drag == DragLaw::ConstantK ? species_value(k_drag, j) : 1.0;
+    hs(j) = drag == DragLaw::Epstein ? species_value(sizes, j) : 0.0;
+    ht(j) = drag == DragLaw::ConstantStoppingTime ? species_value(stopping_time, j) : 0.0;
+  }
+  Kokkos::deep_copy(out.k_drag, hk);
+  Kokkos::deep_copy(out.size, hs);
+  Kokkos::deep_copy(out.stopping_time, ht);
+  return out;
+}
+
 Real DustSettings::species_value(const std::vector<Real>& list, int j) const {
   if (list.empty()) return 0.0;
   return list.size() == 1 ? list[0] : list[j];

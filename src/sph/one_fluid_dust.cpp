@@ -29,20 +29,10 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   d_tot = RealView1("sph::dust_dtot", n);
   uloc = RealView1("sph::dust_u", n);
   gforce = RealView2("sph::dust_gforce", n, dim);
-  kdrag_ = RealView1("sph::dust_K", ns);
-  size_ = RealView1("sph::dust_size", ns);
-  tstop_ = RealView1("sph::dust_tstop", ns);
-  auto hk = Kokkos::create_mirror_view(kdrag_);
-  auto hs = Kokkos::create_mirror_view(size_);
-  auto ht = Kokkos::create_mirror_view(tstop_);
-  for (int j = 0; j < ns; ++j) {
-    hk(j) = s_.drag == DragLaw::ConstantK ? s_.species_value(s_.k_drag, j) : 1.0;
-    hs(j) = s_.drag == DragLaw::Epstein ? s_.species_value(s_.sizes, j) : 0.0;
-    ht(j) = s_.drag == DragLaw::ConstantStoppingTime ? s_.species_value(s_.stopping_time, j) : 0.0;
-  }
-  Kokkos::deep_copy(kdrag_, hk);
-  Kokkos::deep_copy(size_, hs);
-  Kokkos::deep_copy(tstop_, ht);
+  const SpeciesDrag drag = s_.species_drag("sph::dust");
+  kdrag_ = drag.k_drag;
+  size_ = drag.size;
+  tstop_ = drag.stopping_time;
   if (!s_.eps.empty()) {
     auto he = Kokkos::create_mirror_view(var);
     for (int i = 0; i < n; ++i)

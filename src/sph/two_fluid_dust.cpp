@@ -275,22 +275,12 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
   dv = RealView2("sph::two_fluid_dv", p.n, p.dim);
   du = RealView1("sph::two_fluid_du", p.n);
   tinv = RealView2("sph::two_fluid_moment_inverse", p.n, 9);
-  kdrag = RealView1("sph::two_fluid_K", ns);
-  size = RealView1("sph::two_fluid_size", ns);
-  tstop = RealView1("sph::two_fluid_ts", ns);
+  const SpeciesDrag drag = s_.species_drag("sph::two_fluid");
+  kdrag = drag.k_drag;
+  size = drag.size;
+  tstop = drag.stopping_time;
   heat_step = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_step");
   heat_total = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_total");
-  auto hk = Kokkos::create_mirror_view(kdrag);
-  auto hs = Kokkos::create_mirror_view(size);
-  auto ht = Kokkos::create_mirror_view(tstop);
-  for (int j = 0; j < ns; ++j) {
-    hk(j) = s_.drag == DragLaw::ConstantK ? s_.species_value(s_.k_drag, j) : 1.0;
-    hs(j) = s_.drag == DragLaw::Epstein ? s_.species_value(s_.sizes, j) : 0.0;
-    ht(j) = s_.drag == DragLaw::ConstantStoppingTime ? s_.species_value(s_.stopping_time, j) : 0.0;
-  }
-  Kokkos::deep_copy(kdrag, hk);
-  Kokkos::deep_copy(size, hs);
-  Kokkos::deep_copy(tstop, ht);
 }
 
 namespace {

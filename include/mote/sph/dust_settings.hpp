@@ -37,6 +37,12 @@ enum class TwoFluidDrag : int { Improved = 0, Original = 1 };
 /// Pair coefficient of PL15 eq. 43: D_a + D_b (paper), or that limited to 2 D of the donor.
 enum class DustFlux : int { Arithmetic = 0, DonorLimited = 1 };
 
+/// Per-species drag parameters on the device (one View extent per species):
+/// K_j (ConstantK, else 1), s_j (Epstein, else 0), t_sj (ConstantStoppingTime, else 0).
+struct SpeciesDrag {
+  RealView1 k_drag, size, stopping_time;
+};
+
 struct DustSettings {
   DustMethod method = DustMethod::OneFluid;
   TwoFluidDrag drag_scheme = TwoFluidDrag::Improved;  ///< two-fluid only
@@ -64,6 +70,8 @@ struct DustSettings {
   /// Reads [dust] (sizes from a list or the HPL18 eq. 63 power law).
   static DustSettings from_deck(const core::Deck& deck);
 
+  /// The per-species drag parameters of the drag law, copied to the device (labels prefixed with `label`).
+  SpeciesDrag species_drag(const std::string& label) const;
   /// Per-species value of a list given with one or nspecies entries.
   Real species_value(const std::vector<Real>& list, int j) const;
   /// Throws std::invalid_argument on an inconsistent set.
