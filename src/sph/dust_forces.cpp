@@ -3,6 +3,7 @@
 //   sph::dust_prepare   eps = sum_j eps_j, gas pressure and sound speed (PL15 eq. 14,
 //                       HPL18 eq. 31-32), T_sj (with dust.limit_stopping_time at most h / c_s,
 //                       Ballabio et al. 2018) and tilde T_sj (HPL18 eq. 14-17).
+//   sph::dust_pack      the per-particle factors of the pair terms.
 //   sph::dust_forces    momentum (PL15 eq. 25), AV with (1 - eps_a) (eq. 31-32),
 //                       conductivity / (1 - eps_a) (eq. 34-35), du/dt (eq. 27 / 45,
 //                       HPL18 eq. 55-56; with dust.pdv = "gas" the div v_g + drag heating
@@ -12,7 +13,14 @@
 //                       eq. 51 (S_j, stored as S_j / sqrt(rho)).
 //   sph::dust_first     two first derivatives: PL15 eq. 26 with (1 - eps) Delta f = -a_hydro
 //                       (eq. 29-30), eq. B7 for S_j, and the diffusion part of eq. 27.
-// Per-particle gathers over the symmetric neighbour list, no atomics.
+//   sph::dust_dq        dS/dt -> dq/dt for the S variable.
+// Per-particle gathers over the symmetric neighbour list, no atomics. The
+// deck's choices (dust variable, discretisation and pair coefficient, energy
+// equation, PdV form, drag law, stopping-time limiter) are template parameters
+// of the loops, chosen once per call by run_loops(): no kernel branches on them.
+#include <stdexcept>
+#include <type_traits>
+
 #include "mote/core/loops.hpp"
 #include "mote/sph/dust_drag.hpp"
 #include "mote/sph/eos.hpp"
@@ -45,76 +53,124 @@ enum DustSlot : int {
   kPackSize = 21
 };
 
-template <int Dim, class K>
-void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg,
-                      const RealView2& vel, const RealView1& u) {
-  const int n = p.n;
-  const int ns = dust.nspecies();
-  const DustSettings& st = dust.settings();
-  const bool svar = st.variable == DustVariable::SqrtRhoEps;
-  const bool second = st.discretisation == DustDiscretisation::SecondDerivatives;
-  const bool limited = st.flux == DustFlux::DonorLimited;
-  const bool energy = cfg.eos == EosType::Adiabatic;
-  const bool utilde = energy && st.energy == DustEnergy::UTilde;
-  const bool gas_pdv = energy && st.pdv == DustPdV::Gas;
-  const Real gamma = cfg.gamma;
-  const Real gamma_drag = energy ? cfg.gamma : 1.0;
-  const Real cs0 = cfg.cs_iso;
-  const int law = static_cast<int>(st.drag);
-  const Real rho_grain = st.rho_grain;
-  const bool limit_ts = st.limit_ts;
+/// The dust equation's term inside the force loop: none (two first
+/// derivatives, sph::dust_first), PL15 eq. 43 with D_a + D_b, the same with the
+/// donor-limited coefficient, or HPL18 eq. 51 (S variable).
+enum class DustTerm : int { None, EpsMean, EpsDonor, SqrtRhoEps };
+/// The gas energy equation: none (isothermal), u (PL15 eq. 27) or u~ = (1 - eps) u (HPL18 eq. 55).
+enum class GasEnergy : int { None, U, UTilde };
 
-  if (dust.pack.extent(0) != static_cast<std::size_t>(n)) {
-    dust.pack = decltype(dust.pack)(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::dust_pack"), n,
-                                    static_cast<int>(kPackSize));
+/// The run-time choices of the deck, read once per call.
+struct Shape {
+  bool svar;
+  DustTerm term;
+  GasEnergy energy;
+  bool gas_pdv;
+  bool limit_ts;
+  DragLaw law;
+};
+
+Shape shape_of(const DustSettings& st, const SphConfig& cfg) {
+  Shape s{};
+  s.svar = st.variable == DustVariable::SqrtRhoEps;
+  if (st.discretisation == DustDiscretisation::FirstDerivatives)
+    s.term = DustTerm::None;
+  else if (s.svar)
+    s.term = DustTerm::SqrtRhoEps;
+  else
+    s.term = st.flux == DustFlux::DonorLimited ? DustTerm::EpsDonor : DustTerm::EpsMean;
+  const bool adiabatic = cfg.eos == EosType::Adiabatic;
+  s.energy = !adiabatic ? GasEnergy::None : (st.energy == DustEnergy::UTilde ? GasEnergy::UTilde : GasEnergy::U);
+  s.gas_pdv = adiabatic && st.pdv == DustPdV::Gas;
+  s.limit_ts = st.limit_ts;
+  s.law = st.drag;
+  return s;
+}
+
+/// Calls f(std::integral_constant<T, V>{}) for the listed V equal to v.
+template <class T, T... Vs, class F>
+void with_value(T v, F&& f) {
+  const bool found = ((v == Vs ? (f(std::integral_constant<T, Vs>{}), true) : false) || ...);
+  if (!found) throw std::logic_error("sph::dust_forces: unhandled loop shape");
+}
+template <class F>
+void with_bool(bool v, F&& f) {
+  with_value<bool, false, true>(v, f);
+}
+
+/// Stopping time T_sj of species j (eps_j, eps, rho, c_s of the particle): the laws of dust_drag.hpp.
+struct ConstantKTime {
+  RealView1 k;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real ej, Real e, Real rho, Real) const {
+    return ts_constant_k(ej, e, rho, k(j));
   }
-  const auto pk = dust.pack;
-  const auto x = p.x;
-  const auto m = p.m;
-  const auto h = p.h;
-  const auto rho = p.rho;
-  const auto omega = p.omega;
-  const auto P = p.P;
-  const auto cs = p.cs;
-  const auto alpha = p.alpha;
-  const auto type = p.type;
-  const auto acc = p.a;
-  const auto dudt = p.dudt;
-  const auto divv = p.divv;
-  const auto vsig = p.vsig;
-  const auto var = dust.var_pred;
-  const auto sv = svar ? dust.s_pairs : var;  // S_j = sqrt(rho) q_j in the pair terms (S variable)
-  const auto dvar = dust.dvar;
-  const auto ts = dust.ts;
-  const auto coef = dust.coef;
-  const auto eps_tot = dust.eps_tot;
-  const auto eps_ts = dust.eps_ts;
-  const auto d_tot = dust.d_tot;
-  const auto uloc = dust.uloc;
-  const auto gforce = dust.gforce;
-  const auto kdrag = dust.kdrag_view();
-  const auto gsize = dust.size_view();
-  const auto tstop = dust.tstop_view();
-  const auto offsets = nl.offsets;
-  const auto neigh = nl.neigh;
-  const auto image = nl.image;
-  const Real beta = cfg.beta;
-  const Real alpha_u = cfg.alpha_u;
-  const Real R = K::radius();
+};
+struct EpsteinTime {
+  RealView1 size;
+  Real rho_grain, gamma;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real, Real, Real rho, Real cs) const {
+    return ts_epstein(rho_grain, size(j), rho, cs, gamma);
+  }
+};
+struct ConstantTime {
+  RealView1 ts;
+  KOKKOS_INLINE_FUNCTION Real operator()(int j, Real, Real, Real, Real) const { return ts(j); }
+};
 
-  // EOS from the gas density and drag times (PL15 eq. 14; HPL18 eq. 14-17, 31-32).
+/// Everything the loops read and write, gathered once per call.
+struct LoopData {
+  int n, ns, dim;
+  KernelType kernel;
+  Box box;
+  Real gamma, cs0, beta, alpha_u;
+  RealView2 x, vel, acc, gforce;
+  RealView1 m, h, rho, omega, P, cs, alpha, u, dudt, divv, vsig;
+  IntView1 type;
+  RealView2 var, sv, dvar, ts, coef;
+  RealView1 eps_tot, eps_ts, d_tot, uloc;
+  decltype(OneFluidDust::pack) pk;
+  decltype(NeighbourList::offsets) offsets, neigh;
+  decltype(NeighbourList::image) image;
+};
+
+/// eps_j from the evolved variable (eps_j, or q_j = sqrt(eps_j)).
+template <bool Svar>
+KOKKOS_INLINE_FUNCTION Real species_eps(const RealView2& var, int a, int j) {
+  if constexpr (Svar)
+    return var(a, j) * var(a, j);
+  else
+    return var(a, j);
+}
+
+// EOS from the gas density and drag times (PL15 eq. 14; HPL18 eq. 14-17, 31-32).
+template <bool Svar, GasEnergy E, bool LimitTs, class Law>
+void prepare(const LoopData& d, const Law& law) {
+  const int ns = d.ns;
+  const auto rho = d.rho;
+  const auto u = d.u;
+  const auto P = d.P;
+  const auto cs = d.cs;
+  const auto h = d.h;
+  const auto var = d.var;
+  const auto ts = d.ts;
+  const auto coef = d.coef;
+  const auto eps_tot = d.eps_tot;
+  const auto eps_ts = d.eps_ts;
+  const auto d_tot = d.d_tot;
+  const auto uloc = d.uloc;
+  const Real gamma = d.gamma, cs0 = d.cs0;
   par_for(
-      "sph::dust_prepare", 0, n, KOKKOS_LAMBDA(int a) {
+      "sph::dust_prepare", 0, d.n, KOKKOS_LAMBDA(int a) {
         const Real rhoa = rho(a);
         Real e = 0.0;
-        for (int j = 0; j < ns; ++j) e += svar ? var(a, j) * var(a, j) : var(a, j);
+        for (int j = 0; j < ns; ++j) e += species_eps<Svar>(var, a, j);
         const Real fg = 1.0 - e;  // gas fraction
         eps_tot(a) = e;
         Real ua = 0.0;
-        if (!energy) {
+        if constexpr (E == GasEnergy::None) {
           P(a) = pressure_isothermal(fg * rhoa, cs0);
           cs(a) = cs0;
-        } else if (utilde) {
+        } else if constexpr (E == GasEnergy::UTilde) {
           P(a) = pressure_adiabatic(rhoa, u(a), gamma);  // HPL18 eq. 32
           ua = u(a) / fg;
           cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
@@ -126,39 +182,53 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         uloc(a) = ua;
         Real sum_ts = 0.0;
         for (int j = 0; j < ns; ++j) {
-          Real ej = svar ? var(a, j) * var(a, j) : var(a, j);
+          Real ej = species_eps<Svar>(var, a, j);
           ej = ej > 0.0 ? ej : 0.0;
-          Real t;
-          if (law == static_cast<int>(DragLaw::ConstantK)) {
-            t = ts_constant_k(ej, e, rhoa, kdrag(j));
-          } else if (law == static_cast<int>(DragLaw::Epstein)) {
-            t = ts_epstein(rho_grain, gsize(j), rhoa, cs(a), gamma_drag);
-          } else {
-            t = tstop(j);
-          }
-          if (limit_ts && t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
+          Real t = law(j, ej, e, rhoa, cs(a));
+          if constexpr (LimitTs)
+            if (t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
           ts(a, j) = t;
           sum_ts += ej * t;
         }
         eps_ts(a) = sum_ts;
         Real dsum = 0.0;
         for (int j = 0; j < ns; ++j) {
-          Real ej = svar ? var(a, j) * var(a, j) : var(a, j);
+          Real ej = species_eps<Svar>(var, a, j);
           ej = ej > 0.0 ? ej : 0.0;
           const Real tt = (ts(a, j) - sum_ts) / fg;  // HPL18 eq. 15
-          coef(a, j) = svar ? tt : ej * tt;
+          coef(a, j) = Svar ? tt : ej * tt;
           dsum += ej * tt;
         }
         d_tot(a) = dsum;
       });
+}
 
+template <int Dim, bool Svar>
+void pack(const LoopData& d) {
+  const int ns = d.ns;
+  const auto pk = d.pk;
+  const auto x = d.x;
+  const auto vel = d.vel;
+  const auto var = d.var;
+  const auto sv = d.sv;
+  const auto h = d.h;
+  const auto m = d.m;
+  const auto rho = d.rho;
+  const auto omega = d.omega;
+  const auto P = d.P;
+  const auto cs = d.cs;
+  const auto alpha = d.alpha;
+  const auto uloc = d.uloc;
+  const auto eps_tot = d.eps_tot;
+  const auto d_tot = d.d_tot;
+  const auto type = d.type;
   par_for(
-      "sph::dust_pack", 0, n, KOKKOS_LAMBDA(int i) {
-        if (svar)
+      "sph::dust_pack", 0, d.n, KOKKOS_LAMBDA(int i) {
+        if constexpr (Svar)
           for (int j = 0; j < ns; ++j) sv(i, j) = var(i, j) * math::sqrt(rho(i));
-        for (int d = 0; d < Dim; ++d) {
-          pk(i, kX + d) = x(i, d);
-          pk(i, kV + d) = vel(i, d);
+        for (int dd = 0; dd < Dim; ++dd) {
+          pk(i, kX + dd) = x(i, dd);
+          pk(i, kV + dd) = vel(i, dd);
         }
         const Real rpf = 1.0 / (omega(i) * rho(i));
         pk(i, kH) = h(i);
@@ -177,17 +247,84 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
         pk(i, kRpf2) = rpf / rho(i);
         pk(i, kDgas) = P(i) * d_tot(i) / ((1.0 - eps_tot(i)) * rho(i));
       });
+}
 
+/// Pair (a, b) contribution of the dust equation with direct second
+/// derivatives (the DustTerm T != None) to dvar(a, .) and the diffusion part
+/// du_d of (1 - eps_a) du_a/dt; sumc collects PL15 eq. 43's own-particle factor.
+template <DustTerm T>
+struct SecondDerivativeTerm {
+  RealView2 dvar, coef, sv;
+  int ns;
+  KOKKOS_INLINE_FUNCTION void add(int a, int b, Real mb, Real rhoa, Real rhob, Real dP, Real fbar_r, Real ua, Real ub,
+                                  Real dta, Real dtb, Real& sumc, Real& du_d) const {
+    if constexpr (T == DustTerm::EpsDonor) {
+      // PL15 eq. 43 with D_j,a + D_j,b limited to 2 D_j of the particle the dust leaves
+      // (the donor): an empty particle loses no dust, so eps_j stays >= 0.
+      const Real c = mb / (rhoa * rhob) * dP * fbar_r;
+      Real dsum = 0.0;
+      for (int j = 0; j < ns; ++j) {
+        const Real ca = coef(a, j), cb = coef(b, j);
+        const Real donor = 2.0 * (c * (ca + cb) > 0.0 ? ca : cb);
+        const Real dd = math::fabs(ca + cb) < math::fabs(donor) ? ca + cb : donor;
+        dvar(a, j) -= c * dd;
+        dsum += dd;
+      }
+      du_d -= 0.5 * c * (ua - ub) * dsum;  // PL15 eq. 45 with the same coefficient
+    } else if constexpr (T == DustTerm::EpsMean) {
+      // PL15 eq. 43: d eps_j,a/dt = -sum_b m_b / (rho_a rho_b) (D_j,a + D_j,b)(P_a - P_b) Fbar / r.
+      const Real c = mb / (rhoa * rhob) * dP * fbar_r;
+      sumc += c;
+      for (int j = 0; j < ns; ++j) dvar(a, j) -= c * coef(b, j);
+      // (1 - eps_a) du/dt diffusion part (PL15 eq. 45, sign from eq. 41).
+      du_d -= 0.5 * c * (ua - ub) * (dta + dtb);
+    } else if constexpr (T == DustTerm::SqrtRhoEps) {
+      // HPL18 eq. 51 and the diffusion part of eq. 56.
+      const Real c = mb / rhob * dP * fbar_r;
+      const Real ira = 1.0 / rhoa, irb = 1.0 / rhob;
+      Real e = 0.0;
+      for (int j = 0; j < ns; ++j) {
+        const Real t = c * sv(b, j) * (coef(a, j) * ira + coef(b, j) * irb);
+        dvar(a, j) -= 0.5 * t;
+        e += sv(a, j) * t;
+      }
+      du_d -= 0.5 * (ua - ub) * ira * e;
+    }
+  }
+};
+
+template <int Dim, class K, DustTerm T, GasEnergy E, bool GasPdV>
+void force_loop(const LoopData& d) {
+  constexpr bool energy = E != GasEnergy::None;
+  constexpr bool second = T != DustTerm::None;
+  static_assert(energy || !GasPdV, "dust.pdv = \"gas\" needs an energy equation");
+  const int ns = d.ns;
+  const auto pk = d.pk;
+  const auto acc = d.acc;
+  const auto gforce = d.gforce;
+  const auto dvar = d.dvar;
+  const auto coef = d.coef;
+  const auto dudt = d.dudt;
+  const auto divv = d.divv;
+  const auto vsig = d.vsig;
+  const auto eps_tot = d.eps_tot;
+  const auto offsets = d.offsets;
+  const auto neigh = d.neigh;
+  const auto image = d.image;
+  const Box box = d.box;
+  const Real beta = d.beta, alpha_u = d.alpha_u;
+  const Real R = K::radius();
+  const SecondDerivativeTerm<T> dust_term{d.dvar, d.coef, d.sv, ns};
   par_for(
-      "sph::dust_forces", 0, n, KOKKOS_LAMBDA(int a) {
+      "sph::dust_forces", 0, d.n, KOKKOS_LAMBDA(int a) {
         Real du_d = 0.0, du_w = 0.0, sumc = 0.0;
         HydroSums sum(pk(a, kCs));
-        if (second)
+        if constexpr (second)
           for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
         if (pk(a, kIsGas) == 0.0) {
-          for (int d = 0; d < Dim; ++d) {
-            acc(a, d) = 0.0;
-            gforce(a, d) = 0.0;
+          for (int dd = 0; dd < Dim; ++dd) {
+            acc(a, dd) = 0.0;
+            gforce(a, dd) = 0.0;
           }
           dudt(a) = 0.0;
           divv(a) = 0.0;
@@ -195,9 +332,9 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           return;
         }
         Real xa[3] = {0, 0, 0}, va[3] = {0, 0, 0};
-        for (int d = 0; d < Dim; ++d) {
-          xa[d] = pk(a, kX + d);
-          va[d] = pk(a, kV + d);
+        for (int dd = 0; dd < Dim; ++dd) {
+          xa[dd] = pk(a, kX + dd);
+          va[dd] = pk(a, kV + dd);
         }
         const Real ha = pk(a, kH), ha_inv = 1.0 / ha;
         const Real rpfa = pk(a, kRpf);
@@ -217,145 +354,245 @@ void dust_forces_impl(OneFluidDust& dust, Particles& p, const NeighbourList& nl,
           const Real ub = pk(b, kU);
           const HydroSide sb{pk(b, kPpf), pk(b, kRpfAv), pk(b, kAcs), pk(b, kRpf), ub, pk(b, kCs)};
           const Real mb = pk(b, kM);
-          sum.add(g, inside, sa, sb, mb, beta, alpha_u, energy);
-          if (gas_pdv) {
+          sum.add<energy>(g, inside, sa, sb, mb, beta, alpha_u);
+          if constexpr (GasPdV) {
             // (1 - eps_a) du_a/dt += (1/rho) div(D' grad P), D' = P D / rho_g, in the form of PL15 eq. 43.
             du_w += mb / (rhoa * pk(b, kRho)) * (Pa - pk(b, kP)) * 0.5 * (g.fa + g.fb) * g.rinv * (dga + pk(b, kDgas));
           }
-          if (second) {
-            const Real rhob = pk(b, kRho);
+          if constexpr (second) {
             const Real fbar_r = 0.5 * (g.fa + g.fb) * g.rinv;
-            const Real dP = Pa - pk(b, kP);
-            if (!svar && limited) {
-              // PL15 eq. 43 with D_j,a + D_j,b limited to 2 D_j of the particle the dust leaves
-              // (the donor): an empty particle loses no dust, so eps_j stays >= 0.
-              const Real c = mb / (rhoa * rhob) * dP * fbar_r;
-              Real dsum = 0.0;
-              for (int j = 0; j < ns; ++j) {
-                const Real ca = coef(a, j), cb = coef(b, j);
-                const Real donor = 2.0 * (c * (ca + cb) > 0.0 ? ca : cb);
-                const Real d = math::fabs(ca + cb) < math::fabs(donor) ? ca + cb : donor;
-                dvar(a, j) -= c * d;
-                dsum += d;
-              }
-              du_d -= 0.5 * c * (ua - ub) * dsum;  // PL15 eq. 45 with the same coefficient
-            } else if (!svar) {
-              // PL15 eq. 43: d eps_j,a/dt = -sum_b m_b / (rho_a rho_b) (D_j,a + D_j,b)(P_a - P_b) Fbar / r.
-              const Real c = mb / (rhoa * rhob) * dP * fbar_r;
-              sumc += c;
-              for (int j = 0; j < ns; ++j) dvar(a, j) -= c * coef(b, j);
-              // (1 - eps_a) du/dt diffusion part (PL15 eq. 45, sign from eq. 41).
-              du_d -= 0.5 * c * (ua - ub) * (dta + pk(b, kDtot));
-            } else {
-              // HPL18 eq. 51 and the diffusion part of eq. 56.
-              const Real c = mb / rhob * dP * fbar_r;
-              const Real ira = 1.0 / rhoa, irb = 1.0 / rhob;
-              Real e = 0.0;
-              for (int j = 0; j < ns; ++j) {
-                const Real t = c * sv(b, j) * (coef(a, j) * ira + coef(b, j) * irb);
-                dvar(a, j) -= 0.5 * t;
-                e += sv(a, j) * t;
-              }
-              du_d -= 0.5 * (ua - ub) * ira * e;
-            }
+            dust_term.add(a, b, mb, rhoa, pk(b, kRho), Pa - pk(b, kP), fbar_r, ua, ub, dta, pk(b, kDtot), sumc, du_d);
           }
         }
-        if (second && !svar && !limited)
+        if constexpr (T == DustTerm::EpsMean)
           for (int j = 0; j < ns; ++j) dvar(a, j) -= sumc * coef(a, j);
-        for (int d = 0; d < Dim; ++d) {
-          acc(a, d) = sum.acc[d];
-          gforce(a, d) = -sum.acc[d];
+        for (int dd = 0; dd < Dim; ++dd) {
+          acc(a, dd) = sum.acc[dd];
+          gforce(a, dd) = -sum.acc[dd];
         }
         const Real fg = 1.0 - eps_tot(a);
-        dudt(a) = energy ? (utilde ? sum.du + du_w : (sum.du + du_d + du_w) / fg) : 0.0;
+        if constexpr (E == GasEnergy::None)
+          dudt(a) = 0.0;
+        else if constexpr (E == GasEnergy::UTilde)
+          dudt(a) = sum.du + du_w;
+        else
+          dudt(a) = (sum.du + du_d + du_w) / fg;
         divv(a) = sum.dv * rpfa;
         vsig(a) = sum.vs;
       });
+}
 
-  if (!second) {
-    // Two first derivatives: PL15 eq. 26 / B7 with (1 - eps) Delta f = -a_hydro (eq. 29-30).
-    par_for(
-        "sph::dust_first", 0, n, KOKKOS_LAMBDA(int a) {
-          for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
-          if (pk(a, kIsGas) == 0.0) return;
-          Real xa[3] = {0, 0, 0}, ga[3] = {0, 0, 0};
-          for (int d = 0; d < Dim; ++d) {
-            xa[d] = pk(a, kX + d);
-            ga[d] = gforce(a, d);
+// Two first derivatives: PL15 eq. 26 / B7 with (1 - eps) Delta f = -a_hydro (eq. 29-30);
+// AddsHeat: the u equation (not u~) takes the diffusion part of PL15 eq. 27.
+template <int Dim, class K, bool Svar, bool AddsHeat>
+void first_derivatives(const LoopData& d) {
+  const int ns = d.ns;
+  const auto pk = d.pk;
+  const auto gforce = d.gforce;
+  const auto dvar = d.dvar;
+  const auto coef = d.coef;
+  const auto sv = d.sv;
+  const auto dudt = d.dudt;
+  const auto eps_tot = d.eps_tot;
+  const auto offsets = d.offsets;
+  const auto neigh = d.neigh;
+  const auto image = d.image;
+  const Box box = d.box;
+  par_for(
+      "sph::dust_first", 0, d.n, KOKKOS_LAMBDA(int a) {
+        for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
+        if (pk(a, kIsGas) == 0.0) return;
+        Real xa[3] = {0, 0, 0}, ga[3] = {0, 0, 0};
+        for (int dd = 0; dd < Dim; ++dd) {
+          xa[dd] = pk(a, kX + dd);
+          ga[dd] = gforce(a, dd);
+        }
+        const Real ha_inv = pk(a, kHinv);
+        const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
+        const Real rpfa = pk(a, kRpf), rpf2a = pk(a, kRpf2), ua = pk(a, kU), rhoa = pk(a, kRho), dta = pk(a, kDtot);
+        Real sum_a = 0.0, du_d = 0.0;
+        const int jend = offsets(a + 1);
+        for (int jj = offsets(a); jj < jend; ++jj) {
+          const int b = neigh(jj);
+          PairGeometry<Dim, K> g;
+          if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
+          g.gradients(ha_inv, norm_a, pk(b, kHinv));
+          Real gra = 0.0, grb = 0.0;
+          for (int dd = 0; dd < Dim; ++dd) {
+            gra += ga[dd] * g.dx[dd];
+            grb += gforce(b, dd) * g.dx[dd];
           }
-          const Real ha_inv = pk(a, kHinv);
-          const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
-          const Real rpfa = pk(a, kRpf), rpf2a = pk(a, kRpf2), ua = pk(a, kU), rhoa = pk(a, kRho), dta = pk(a, kDtot);
-          Real sum_a = 0.0, du_d = 0.0;
-          const int jend = offsets(a + 1);
-          for (int jj = offsets(a); jj < jend; ++jj) {
-            const int b = neigh(jj);
-            PairGeometry<Dim, K> g;
-            if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
-            g.gradients(ha_inv, norm_a, pk(b, kHinv));
-            Real gra = 0.0, grb = 0.0;
-            for (int d = 0; d < Dim; ++d) {
-              gra += ga[d] * g.dx[d];
-              grb += gforce(b, d) * g.dx[d];
+          gra *= g.rinv;
+          grb *= g.rinv;
+          const Real mb = pk(b, kM);
+          const Real ub = pk(b, kU);
+          if constexpr (!Svar) {
+            const Real A = rpfa * gra * g.fa, B = pk(b, kRpf) * grb * g.fb;
+            sum_a += mb * A;
+            for (int j = 0; j < ns; ++j) dvar(a, j) -= mb * B * coef(b, j);
+            du_d -= dta * mb * (ua - ub) * A;  // PL15 eq. 27, second term
+          } else {
+            const Real A = rpf2a * gra * g.fa, B = pk(b, kRpf2) * grb * g.fb;
+            Real e = 0.0;
+            for (int j = 0; j < ns; ++j) {
+              const Real sb = sv(b, j);
+              dvar(a, j) -= 0.5 * rhoa * mb * sb * (coef(a, j) * A + coef(b, j) * B);  // eq. B7
+              e += sv(a, j) * coef(a, j) * sb;
             }
-            gra *= g.rinv;
-            grb *= g.rinv;
-            const Real mb = pk(b, kM);
-            const Real ub = pk(b, kU);
-            if (!svar) {
-              const Real A = rpfa * gra * g.fa, B = pk(b, kRpf) * grb * g.fb;
-              sum_a += mb * A;
-              for (int j = 0; j < ns; ++j) dvar(a, j) -= mb * B * coef(b, j);
-              du_d -= dta * mb * (ua - ub) * A;  // PL15 eq. 27, second term
-            } else {
-              const Real A = rpf2a * gra * g.fa, B = pk(b, kRpf2) * grb * g.fb;
-              Real e = 0.0;
-              for (int j = 0; j < ns; ++j) {
-                const Real sb = sv(b, j);
-                dvar(a, j) -= 0.5 * rhoa * mb * sb * (coef(a, j) * A + coef(b, j) * B);  // eq. B7
-                e += sv(a, j) * coef(a, j) * sb;
-              }
-              du_d -= mb * (ua - ub) * A * e;
-            }
+            du_d -= mb * (ua - ub) * A * e;
           }
-          if (!svar)
-            for (int j = 0; j < ns; ++j) dvar(a, j) -= sum_a * coef(a, j);
-          if (energy && !utilde) dudt(a) += du_d / (1.0 - eps_tot(a));
-        });
+        }
+        if constexpr (!Svar)
+          for (int j = 0; j < ns; ++j) dvar(a, j) -= sum_a * coef(a, j);
+        if constexpr (AddsHeat) dudt(a) += du_d / (1.0 - eps_tot(a));
+      });
+}
+
+// The stored variable is q_j = S_j / sqrt(rho) = sqrt(eps_j): dq/dt = (dS/dt)_pairs / sqrt(rho).
+// The last term of HPL18 eq. 51 / PL15 eq. B7, S_a / (2 rho_a Omega_a) sum_b m_b v_ab . grad W_ab
+// = (S / 2) dln(rho)/dt, is the change of S at fixed eps: integrated exactly by storing q.
+void sqrt_rho_rate(const LoopData& d) {
+  const int ns = d.ns;
+  const auto rho = d.rho;
+  const auto dvar = d.dvar;
+  par_for(
+      "sph::dust_dq", 0, d.n, KOKKOS_LAMBDA(int a) {
+        const Real r = 1.0 / math::sqrt(rho(a));
+        for (int j = 0; j < ns; ++j) dvar(a, j) *= r;
+      });
+}
+
+template <DustTerm T, GasEnergy E, bool GasPdV>
+struct ForceLoop {
+  const LoopData& d;
+  template <int Dim, class K>
+  void operator()() {
+    force_loop<Dim, K, T, E, GasPdV>(d);
   }
+};
 
-  if (svar) {
-    // The stored variable is q_j = S_j / sqrt(rho) = sqrt(eps_j): dq/dt = (dS/dt)_pairs / sqrt(rho).
-    // The last term of HPL18 eq. 51 / PL15 eq. B7, S_a / (2 rho_a Omega_a) sum_b m_b v_ab . grad W_ab
-    // = (S / 2) dln(rho)/dt, is the change of S at fixed eps: integrated exactly by storing q.
-    par_for(
-        "sph::dust_dq", 0, n, KOKKOS_LAMBDA(int a) {
-          const Real r = 1.0 / math::sqrt(rho(a));
-          for (int j = 0; j < ns; ++j) dvar(a, j) *= r;
-        });
+template <bool Svar, bool AddsHeat>
+struct FirstDerivatives {
+  const LoopData& d;
+  template <int Dim, class K>
+  void operator()() {
+    first_derivatives<Dim, K, Svar, AddsHeat>(d);
+  }
+};
+
+template <bool Svar>
+struct Pack {
+  const LoopData& d;
+  template <int Dim, class K>
+  void operator()() {
+    pack<Dim, Svar>(d);
+  }
+};
+
+template <bool Svar, GasEnergy E, bool LimitTs>
+void prepare_with_law(const LoopData& d, const Shape& s, const OneFluidDust& dust, Real rho_grain) {
+  switch (s.law) {
+    case DragLaw::ConstantK:
+      prepare<Svar, E, LimitTs>(d, ConstantKTime{dust.kdrag_view()});
+      return;
+    case DragLaw::Epstein:
+      prepare<Svar, E, LimitTs>(d, EpsteinTime{dust.size_view(), rho_grain, E == GasEnergy::None ? 1.0 : d.gamma});
+      return;
+    case DragLaw::ConstantStoppingTime:
+      prepare<Svar, E, LimitTs>(d, ConstantTime{dust.tstop_view()});
+      return;
   }
 }
 
-struct DustForcesDispatch {
-  OneFluidDust& dust;
-  Particles& p;
-  const NeighbourList& nl;
-  const Box& box;
-  const SphConfig& cfg;
-  const RealView2& vel;
-  const RealView1& u;
-  template <int Dim, class K>
-  void operator()() {
-    dust_forces_impl<Dim, K>(dust, p, nl, box, cfg, vel, u);
+/// Runs the loops in the shape s.
+void run_loops(const LoopData& d, const Shape& s, const OneFluidDust& dust) {
+  using E = GasEnergy;
+  using T = DustTerm;
+  with_bool(s.svar, [&](auto svar) {
+    constexpr bool Svar = decltype(svar)::value;
+    with_value<E, E::None, E::U, E::UTilde>(s.energy, [&](auto energy) {
+      constexpr E En = decltype(energy)::value;
+      with_bool(s.limit_ts, [&](auto limit) {
+        prepare_with_law<Svar, En, decltype(limit)::value>(d, s, dust, dust.settings().rho_grain);
+      });
+    });
+    dispatch(d.dim, d.kernel, Pack<Svar>{d});
+  });
+  with_value<T, T::None, T::EpsMean, T::EpsDonor, T::SqrtRhoEps>(s.term, [&](auto term) {
+    with_value<E, E::None, E::U, E::UTilde>(s.energy, [&](auto energy) {
+      with_bool(s.gas_pdv, [&](auto pdv) {
+        constexpr E En = decltype(energy)::value;
+        constexpr bool Pdv = decltype(pdv)::value;
+        if constexpr (En != E::None || !Pdv) dispatch(d.dim, d.kernel, ForceLoop<decltype(term)::value, En, Pdv>{d});
+      });
+    });
+  });
+  if (s.term == T::None) {
+    with_bool(s.svar, [&](auto svar) {
+      with_bool(s.energy == E::U, [&](auto heat) {
+        dispatch(d.dim, d.kernel, FirstDerivatives<decltype(svar)::value, decltype(heat)::value>{d});
+      });
+    });
   }
-};
+  if (s.svar) sqrt_rho_rate(d);
+}
+
+LoopData loop_data(OneFluidDust& dust, Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg,
+                   const RealView2& vel, const RealView1& u) {
+  const int n = p.n;
+  if (dust.pack.extent(0) != static_cast<std::size_t>(n)) {
+    dust.pack = decltype(dust.pack)(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::dust_pack"), n,
+                                    static_cast<int>(kPackSize));
+  }
+  const bool svar = dust.settings().variable == DustVariable::SqrtRhoEps;
+  LoopData d{};
+  d.n = n;
+  d.ns = dust.nspecies();
+  d.dim = p.dim;
+  d.kernel = cfg.kernel;
+  d.box = box;
+  d.gamma = cfg.gamma;
+  d.cs0 = cfg.cs_iso;
+  d.beta = cfg.beta;
+  d.alpha_u = cfg.alpha_u;
+  d.x = p.x;
+  d.vel = vel;
+  d.acc = p.a;
+  d.gforce = dust.gforce;
+  d.m = p.m;
+  d.h = p.h;
+  d.rho = p.rho;
+  d.omega = p.omega;
+  d.P = p.P;
+  d.cs = p.cs;
+  d.alpha = p.alpha;
+  d.u = u;
+  d.dudt = p.dudt;
+  d.divv = p.divv;
+  d.vsig = p.vsig;
+  d.type = p.type;
+  d.var = dust.var_pred;
+  d.sv = svar ? dust.s_pairs : dust.var_pred;  // S_j = sqrt(rho) q_j in the pair terms (S variable)
+  d.dvar = dust.dvar;
+  d.ts = dust.ts;
+  d.coef = dust.coef;
+  d.eps_tot = dust.eps_tot;
+  d.eps_ts = dust.eps_ts;
+  d.d_tot = dust.d_tot;
+  d.uloc = dust.uloc;
+  d.pk = dust.pack;
+  d.offsets = nl.offsets;
+  d.neigh = nl.neigh;
+  d.image = nl.image;
+  return d;
+}
 
 }  // namespace dust_detail
 
 void OneFluidDust::mixture_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg,
                                   const RealView2& vel, const RealView1& u) {
-  dust_detail::DustForcesDispatch f{*this, p, nl, box, cfg, vel, u};
-  dispatch(p.dim, cfg.kernel, f);
+  const dust_detail::LoopData d = dust_detail::loop_data(*this, p, nl, box, cfg, vel, u);
+  dust_detail::run_loops(d, dust_detail::shape_of(s_, cfg), *this);
 }
 
 }  // namespace mote::sph

@@ -74,7 +74,7 @@ enum PackSlot : int {
   kSlotPackSize = 16  // two cache lines
 };
 
-template <int Dim, class K>
+template <int Dim, class K, bool Energy>
 void forces_impl(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg, const RealView2& vel,
                  const RealView1& u) {
   const int n = p.n;
@@ -101,7 +101,6 @@ void forces_impl(Particles& p, const NeighbourList& nl, const Box& box, const Sp
   const auto image = nl.image;
   const Real beta = cfg.beta;
   const Real alpha_u = cfg.alpha_u;
-  const bool energy = cfg.eos == EosType::Adiabatic;
   const Real R = K::radius();
 
   par_for(
@@ -154,10 +153,10 @@ void forces_impl(Particles& p, const NeighbourList& nl, const Box& box, const Sp
           g.approach(va, pk, kSlotV, b);
           const Real rpfb = pk(b, kSlotRpf);
           const HydroSide sb{pk(b, kSlotPpf), rpfb, pk(b, kSlotAcs), rpfb, pk(b, kSlotU), pk(b, kSlotCs)};
-          sum.add(g, inside, sa, sb, pk(b, kSlotM), beta, alpha_u, energy);
+          sum.add<Energy>(g, inside, sa, sb, pk(b, kSlotM), beta, alpha_u);
         }
         for (int d = 0; d < Dim; ++d) acc(a, d) = sum.acc[d];
-        dudt(a) = energy ? sum.du : 0.0;
+        dudt(a) = Energy ? sum.du : 0.0;
         divv(a) = sum.dv * rpfa;  // -(1 / (Omega_a rho_a)) sum m_b v_ab . grad W(h_a)
         vsig(a) = sum.vs;
       });
@@ -199,7 +198,10 @@ struct ForcesDispatch {
   const RealView1& u;
   template <int Dim, class K>
   void operator()() {
-    forces_impl<Dim, K>(p, nl, box, cfg, vel, u);
+    if (cfg.eos == EosType::Adiabatic)
+      forces_impl<Dim, K, true>(p, nl, box, cfg, vel, u);
+    else
+      forces_impl<Dim, K, false>(p, nl, box, cfg, vel, u);
   }
 };
 

@@ -70,17 +70,18 @@ struct HydroSums {
 
   KOKKOS_INLINE_FUNCTION explicit HydroSums(Real cs_a) : vs(cs_a) {}
 
-  /// Adds neighbour b of mass mb; `inside`: within max(R h_a, R h_b) (v_sig).
-  template <int Dim, class K>
+  /// Adds neighbour b of mass mb; `inside`: within max(R h_a, R h_b) (v_sig);
+  /// Energy: the gas has an energy equation (adiabatic EOS).
+  template <bool Energy, int Dim, class K>
   KOKKOS_INLINE_FUNCTION void add(const PairGeometry<Dim, K>& g, bool inside, const HydroSide& a, const HydroSide& b,
-                                  Real mb, Real beta, Real alpha_u, bool energy) {
+                                  Real mb, Real beta, Real alpha_u) {
     // Artificial viscosity q / (Omega rho^2), PL15 eq. 31-32: approaching pairs only.
     const Real qa = -0.5 * a.avf * (a.acs - beta * g.vneg) * g.vneg;
     const Real qb = -0.5 * b.avf * (b.acs - beta * g.vneg) * g.vneg;
     // PL15 eq. 25.
     const Real fpair = mb * ((a.ppf + qa) * g.fa + (b.ppf + qb) * g.fb) * g.rinv;
     for (int d = 0; d < Dim; ++d) acc[d] -= fpair * g.dx[d];
-    if (energy) {
+    if constexpr (Energy) {
       // PL15 eq. 27 (PdV + viscous heating) and eq. 34-35 (conductivity).
       du += mb * (a.ppf + qa) * g.vr * g.fa;
       const Real qcond = 0.5 * alpha_u * math::fabs(g.vr) * (a.u - b.u);
