@@ -355,8 +355,8 @@ void OneFluidDust::load_state(SphSystem&, const io::H5File& f) {
     throw std::runtime_error("checkpoint dust variable is " + stored + ", the deck evolves " + dust_storage(s_) +
                              " (dust.variable): restart with the deck that wrote it");
   std::vector<double> buf(n * ns);
-  for (const auto& [name, view] :
-       {std::pair<const char*, RealView2>{"/state/dust_var", var}, {"/state/dust_dvar", dvar}}) {
+  const std::pair<const char*, RealView2> fields[] = {{"/state/dust_var", var}, {"/state/dust_dvar", dvar}};
+  for (const auto& [name, view] : fields) {
     f.read(name, io::Block::whole({n, ns}), buf.data());
     auto h = Kokkos::create_mirror_view(view);
     for (hsize_t i = 0; i < n; ++i)
