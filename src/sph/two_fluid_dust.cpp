@@ -34,11 +34,21 @@ struct EpsteinDrag {
   }
 };
 
+/// Columns of TwoFluidDust::drag_pack: per-particle factors of the pair terms,
+/// packed once per drag update so that a pair costs three divisions.
+enum DragSlot : int {
+  kHinv = 0,    // 1 / h
+  kWfac = 1,    // (m / rho) K::norm() / h^Dim: w_ik = kWfac(k) f(r_ik / h_k)
+  kRhoInv = 2,  // 1 / rho
+  kAcc = 3,     // non-drag acceleration over the (sub-)step, (v - v_start) / dt (Dim)
+  kDragSlots = 6
+};
+
 /// The pair (dust i, gas k) of LAB15 eq. 17-21 and 27-28.
 template <int Dim, class K, class Law>
 struct DragPair {
-  RealView2 x, v, v0;
-  RealView1 m, h, rho, cs;
+  RealView2 x, v, pk;
+  RealView1 rho, cs;
   RealView2 tinv;
   IntView1 type;
   Box box;
@@ -55,18 +65,20 @@ struct DragPair {
       rhat[d] = box.separation(x(i, d), x(k, d), img_from_i, d);
       r2 += rhat[d] * rhat[d];
     }
-    const Real hinv = 1.0 / h(k);
-    const Real q = math::sqrt(r2) * hinv;
-    if (!(r2 > 0.0) || q >= K::radius()) return false;
+    if (!(r2 > 0.0)) return false;
+    const Real r = math::sqrt(r2);
+    const Real q = r * pk(k, kHinv);
+    if (q >= K::radius()) return false;
     Real f, df;
     K::shape(q, f, df);
-    w = m(k) * K::norm() * ipow<Dim>(hinv) * f / rho(k);
-    const Real rinv = 1.0 / math::sqrt(r2);
+    w = pk(k, kWfac) * f;
+    const Real rinv = 1.0 / r;
     for (int d = 0; d < Dim; ++d) rhat[d] *= rinv;
-    const Real eps = rho(i) / rho(k);
+    const Real eps = rho(i) * pk(k, kRhoInv);
     const Real ts = law(type(i) - kDust, rho(i), rho(k), cs(k));
-    const Real xi = -math::expm1(-dt / ts) / (1.0 + eps);                 // eq. 6
-    const Real lambda = lambda_on * ((dt + ts) * xi - dt / (1.0 + eps));  // eq. 19
+    const Real mix = 1.0 / (1.0 + eps);
+    const Real xi = -math::expm1(-dt / ts) * mix;                 // eq. 6
+    const Real lambda = lambda_on * ((dt + ts) * xi - dt * mix);  // eq. 19
     sr = 0.0;
     ve = 0.0;
     for (int d = 0; d < Dim; ++d) {
@@ -76,13 +88,31 @@ struct DragPair {
     }
     for (int d = 0; d < Dim; ++d) {
       const Real vdg = v(i, d) - v(k, d);
-      const Real adg = ((v(i, d) - v0(i, d)) - (v(k, d) - v0(k, d))) / dt;  // non-drag a_DG over the step
-      sr += (xi * vdg - lambda * adg) * rhat[d];                            // eq. 21
+      const Real adg = pk(i, kAcc + d) - pk(k, kAcc + d);  // non-drag a_DG over the step
+      sr += (xi * vdg - lambda * adg) * rhat[d];            // eq. 21
       ve += vdg * e[d];
     }
     return true;
   }
 };
+
+/// Fills TwoFluidDust::drag_pack for the (sub-)step dt.
+template <int Dim, class K>
+void pack_drag_factors(const Particles& p, const RealView2& v_start, const RealView2& pk, Real dt) {
+  const auto v = p.v;
+  const auto m = p.m;
+  const auto h = p.h;
+  const auto rho = p.rho;
+  const Real dt_inv = 1.0 / dt;
+  par_for(
+      "sph::two_fluid_drag_pack", 0, p.n, KOKKOS_LAMBDA(int a) {
+        const Real hinv = 1.0 / h(a);
+        pk(a, kHinv) = hinv;
+        pk(a, kWfac) = m(a) / rho(a) * K::norm() * ipow<Dim>(hinv);
+        pk(a, kRhoInv) = 1.0 / rho(a);
+        for (int d = 0; d < Dim; ++d) pk(a, kAcc + d) = (v(a, d) - v_start(a, d)) * dt_inv;
+      });
+}
 
 /// Inverse of the symmetric Dim x Dim moment t (row-major, 3 x 3 storage), or
 /// (Dim / trace) I where t is nearly singular (gas neighbours on a line or plane).
@@ -137,12 +167,12 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
   const auto type = p.type;
   const auto x = p.x;
   const auto m = p.m;
-  const auto h = p.h;
-  const auto rho = p.rho;
+  const auto pk = dust.drag_pack;
   const auto tinv = dust.tinv;
   const auto dv = dust.dv;
   const auto du = dust.du;
   const Box box = sys.box();
+  pack_drag_factors<Dim, K>(p, dust.v_start, pk, dt);
 
   // Pass 1: T_i = sum_k^gas (m_k / rho_k) W(r_ik, h_k) r^ r^T and its inverse
   // (for isotropic neighbours T_i = (N_i / nu) I, eq. 30).
@@ -159,10 +189,9 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
               r2 += r[d] * r[d];
             }
             if (!(r2 > 0.0)) continue;
-            const Real hinv = 1.0 / h(k);
             Real f, df;
-            K::shape(math::sqrt(r2) * hinv, f, df);
-            const Real wk = m(k) / rho(k) * K::norm() * ipow<Dim>(hinv) * f / r2;
+            K::shape(math::sqrt(r2) * pk(k, kHinv), f, df);
+            const Real wk = pk(k, kWfac) * f / r2;
             for (int d = 0; d < Dim; ++d)
               for (int c = 0; c < Dim; ++c) t[3 * d + c] += wk * r[d] * r[c];
           }
@@ -171,8 +200,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
         for (int c = 0; c < 9; ++c) tinv(i, c) = inv[c];
       });
 
-  const DragPair<Dim, K, Law> pair{p.x,  p.v,    dust.v_start, p.m, p.h, p.rho,    p.cs,
-                                   tinv, p.type, box,          law, dt,  lambda_on};
+  const DragPair<Dim, K, Law> pair{p.x, p.v, pk, p.rho, p.cs, tinv, p.type, box, law, dt, lambda_on};
   // Pass 2: the dust, eq. 27.
   par_for(
       "sph::two_fluid_drag_dust", 0, n, KOKKOS_LAMBDA(int i) {
@@ -194,6 +222,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
         if (type(k) != kGas) return;
         Real acc[3] = {0.0, 0.0, 0.0};
         Real work = 0.0;  // sum_i m_i w_ik (S_ik . r^) (v~_ik + Dv_i / 2) . e_ik
+        const Real mk_inv = 1.0 / m(k);
         for (int j = offsets(k); j < offsets(k + 1); ++j) {
           const int i = neigh(j);
           if (type(i) == kGas) continue;
@@ -203,7 +232,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
           const Real mw = m(i) * w;
           Real dvi_e = 0.0;
           for (int d = 0; d < Dim; ++d) {
-            acc[d] += mw / m(k) * sr * e[d];
+            acc[d] += mw * mk_inv * sr * e[d];
             dvi_e += dv(i, d) * e[d];
           }
           work += mw * sr * (ve + 0.5 * dvi_e);
@@ -213,7 +242,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
           dv(k, d) = acc[d];
           dv2 += acc[d] * acc[d];
         }
-        du(k) = work / m(k) - 0.5 * dv2;
+        du(k) = work * mk_inv - 0.5 * dv2;
       });
   // Pass 4: apply; the heating total stays on the device.
   const auto v = p.v;
@@ -275,6 +304,7 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
   dv = RealView2("sph::two_fluid_dv", p.n, p.dim);
   du = RealView1("sph::two_fluid_du", p.n);
   tinv = RealView2("sph::two_fluid_moment_inverse", p.n, 9);
+  drag_pack = RealView2("sph::two_fluid_drag_pack", p.n, static_cast<int>(two_fluid_detail::kDragSlots));
   const SpeciesDrag drag = s_.species_drag("sph::two_fluid");
   kdrag = drag.k_drag;
   size = drag.size;

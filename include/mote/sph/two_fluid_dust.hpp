@@ -86,6 +86,7 @@ class TwoFluidDust : public SphModule {
   RealView2 v_start, dv;                               ///< velocity at the start of the step; drag change (n x dim)
   RealView2 tinv;                                      ///< T_i^-1 of the dust (n x 9, row-major 3 x 3), see above
   RealView1 du;                                        ///< drag heating of the gas
+  RealView2 drag_pack;                                 ///< per-particle factors of the pair terms (n x 6)
   RealView1 kdrag, size, tstop;                        ///< per species
   Kokkos::View<Real, MemSpace> heat_step, heat_total;  ///< drag heating of the last update and since the start
 
