@@ -25,7 +25,8 @@ honest error bar. The JSON also holds every command, the benchmark names,
 the JSON context of each driver (mote_backend, mote_execution_space,
 mote_device, host, CPU count, library build type) and the load average
 before each run. Prints a one-line summary. Exit status 0, or 1 if a run
-failed or a filter or counter matched nothing usable.
+failed or a filter or counter matched nothing usable, 2 if --max-ratio or
+--min-ratio is given and the ratio lies outside it.
 """
 import argparse
 import datetime
@@ -109,6 +110,10 @@ def main():
     ap.add_argument("--bench-args", default="", help="extra arguments of the benchmark driver (one string)")
     ap.add_argument("--limit-args", default="", help="extra arguments of the limit driver (one string)")
     ap.add_argument("--out", required=True, help="JSON file to write")
+    ap.add_argument("--max-ratio", type=float, default=None,
+                    help="a bound to check: exit status 2 if the ratio of the medians exceeds it")
+    ap.add_argument("--min-ratio", type=float, default=None,
+                    help="a bound to check: exit status 2 if the ratio of the medians is below it")
     args = ap.parse_args()
     if args.repetitions < 1 or args.rounds < 1:
         ap.error("--repetitions and --rounds must be >= 1")
@@ -141,6 +146,7 @@ def main():
         "ratio": bench["median"] / limit["median"],
         "round_ratios": paired, "round_ratio_min": min(paired), "round_ratio_max": max(paired),
         "same_context": same,
+        "max_ratio": args.max_ratio, "min_ratio": args.min_ratio,
         "backend": bench["context"].get("mote_backend"),
         "execution_space": bench["context"].get("mote_execution_space"),
         "device": bench["context"].get("mote_device"),
@@ -156,7 +162,18 @@ def main():
           f"{result['device']}); wrote {args.out}")
     if not same:
         print("ratio.py: warning: the two drivers report different back-ends or devices", file=sys.stderr)
-    return 0
+    return check_bounds(result["ratio"], args.max_ratio, args.min_ratio)
+
+
+def check_bounds(ratio, max_ratio, min_ratio):
+    """0 if ratio lies within the bounds given (none: 0), else 2, with a PASS/FAIL line."""
+    if max_ratio is None and min_ratio is None:
+        return 0
+    ok = (max_ratio is None or ratio <= max_ratio) and (min_ratio is None or ratio >= min_ratio)
+    bounds = " and ".join(b for b in (f"<= {max_ratio}" if max_ratio is not None else "",
+                                      f">= {min_ratio}" if min_ratio is not None else "") if b)
+    print(f"{'PASS' if ok else 'FAIL'} ratio {ratio:.4f} ({bounds})")
+    return 0 if ok else 2
 
 
 if __name__ == "__main__":
