@@ -16,7 +16,8 @@ particle (both in id order):
 Cases: sph_dustywave, one-fluid with 3 species, 1D adiabatic; sph_dustybox,
 two-fluid, 2D isothermal. A comparison with one value of x moved by one ulp
 must fail (the check can fail). Also: sph_format = "phantom" writes dumps
-and no HDF5 snapshot; sph_sod with sod.rho_right = 0.3, whose left and
+and no HDF5 snapshot; a dump whose temporary is /dev/full stops the run with
+exit 5 naming the file, after a checkpoint, leaving no dump or temporary; sph_sod with sod.rho_right = 0.3, whose left and
 right particle masses differ (lattice rounding), is refused (exit 2, the message names output.sph_format)
 before anything is written; a bad value and the key on a grid problem are
 deck errors (exit 2, also with --check).
@@ -40,7 +41,7 @@ bindir, work = sys.argv[1], sys.argv[2]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 checks = Checks()
-BAD_INPUT = 2
+BAD_INPUT, IO_ERROR = 2, 5  # include/mote/core/exit_codes.hpp
 PHANTOM_GAS, PHANTOM_DUST = 1, 7  # Phantom's igas, idust
 
 
@@ -153,6 +154,18 @@ run([os.path.join(bindir, "sph_dustybox"), deck_of("sph_dustybox"), f"output.dir
      "dustybox.n=8", "run.t_end=0.01"])
 checks.check(len(glob.glob(os.path.join(out, "snapshot_*.phantom"))) == 2 and not glob.glob(os.path.join(out, "snapshot_*.h5"))
              and not glob.glob(os.path.join(out, "*.xmf")), 'sph_format = "phantom": dumps, no HDF5 snapshot or XDMF')
+
+out = os.path.join(work, "dev_full")
+box = [os.path.join(bindir, "sph_dustybox"), deck_of("sph_dustybox"), f"output.dir={out}", 'output.sph_format="phantom"',
+       "dustybox.n=8", "run.t_end=0.05", "output.snapshot_dt=0.01", "run.progress_interval=0"]
+run(box + ["run.max_steps=2"])
+nxt = os.path.join(out, f"snapshot_{len(glob.glob(os.path.join(out, 'snapshot_*.phantom'))):05d}.phantom")
+os.symlink("/dev/full", nxt + ".tmp")
+p = run(box[:2] + ["--restart", "latest"] + box[2:], expect=None)
+checks.check(p.returncode == IO_ERROR and f"cannot write '{nxt}.tmp': No space left on device" in p.stderr
+             and "writing a checkpoint" in p.stdout + p.stderr and not os.path.lexists(nxt + ".tmp")
+             and not os.path.exists(nxt), f"a dump on /dev/full: exit {p.returncode}, the error names the file, a checkpoint "
+             f"is written, no {os.path.basename(nxt)} and no temporary left")
 
 out = os.path.join(work, "unequal_masses")
 p = run([os.path.join(bindir, "sph_sod"), deck_of("sph_sod"), f"output.dir={out}", "sod.rho_right=0.3",
