@@ -67,6 +67,11 @@ PhantomTypes phantom_types(const Snapshot& snap) {
   const int n = static_cast<int>(snap.m.extent(0));
   int ntypes = kPhantomDust;
   for (int i = 0; i < n; ++i) ntypes = std::max(ntypes, phantom_type(snap.type(i)));
+  if (ntypes > std::numeric_limits<std::int8_t>::max())
+    throw core::InputError(
+        logging::format("output.sph_format: Phantom's itype is an int*1, which cannot hold the %d "
+                        "particle types of this run",
+                        ntypes));
   PhantomTypes t{std::vector<std::int32_t>(ntypes, 0), std::vector<double>(ntypes, 0.0)};
   std::vector<int> first(ntypes, -1);
   for (int i = 0; i < n; ++i) {
@@ -89,6 +94,37 @@ std::vector<double> component(const HostView<Real**>& a, int d) {
   if (d < static_cast<int>(a.extent(1)))
     for (size_t i = 0; i < c.size(); ++i) c[i] = a(i, d);
   return c;
+}
+
+void write_phantom_header(const PhantomTypes& types, const SphConfig& cfg, io::PhantomDump& dump) {
+  std::int32_t n = 0;
+  for (const auto c : types.count) n += c;
+  dump.header_int("nparttot", {n});
+  dump.header_int("ntypes", {static_cast<std::int32_t>(types.count.size())});
+  dump.header_int("npartoftype", types.count);
+  dump.header_int("nblocks", {1});
+  dump.header_int("nptmass", {0});
+  dump.header_int("ndustlarge", {0});  // the dust modules set theirs
+  dump.header_int("ndustsmall", {0});
+  dump.header_int("idust", {kPhantomDust});
+  dump.header_real("gamma", {cfg.eos == EosType::Adiabatic ? cfg.gamma : 1.0});
+  dump.header_real("hfact", {cfg.effective_hfact()});
+  dump.header_real("massoftype", types.mass);
+}
+
+void write_phantom_arrays(const Snapshot& snap, const SphConfig& cfg, io::PhantomDump& dump) {
+  const int n = static_cast<int>(snap.m.extent(0));
+  std::vector<std::int8_t> itype(n);
+  for (int i = 0; i < n; ++i) itype[i] = static_cast<std::int8_t>(phantom_type(snap.type(i)));
+  dump.int1_array("itype", std::move(itype));
+  const char* const axes[] = {"x", "y", "z"};
+  const char* const velocities[] = {"vx", "vy", "vz"};
+  for (int d = 0; d < 3; ++d) dump.real_array(axes[d], component(snap.x, d));
+  for (int d = 0; d < 3; ++d) dump.real_array(velocities[d], component(snap.v, d));
+  if (cfg.eos == EosType::Adiabatic) dump.real_array("u", std::vector<double>(snap.u.data(), snap.u.data() + n));
+  std::vector<float> h(n);
+  for (int i = 0; i < n; ++i) h[i] = static_cast<float>(snap.h(i));
+  dump.real4_array("h", std::move(h));
 }
 
 }  // namespace
@@ -204,31 +240,8 @@ void SphSimulation::check_phantom_dump() const { phantom_types(system_->snapshot
 
 void SphSimulation::write_phantom_dump(io::PhantomDump& dump) const {
   const auto snap = system_->snapshot();
-  const auto& cfg = system_->config();
-  const int n = static_cast<int>(snap.m.extent(0));
-  const PhantomTypes types = phantom_types(snap);
-  dump.header_int("nparttot", {n});
-  dump.header_int("ntypes", {static_cast<std::int32_t>(types.count.size())});
-  dump.header_int("npartoftype", types.count);
-  dump.header_int("nblocks", {1});
-  dump.header_int("nptmass", {0});
-  dump.header_int("ndustlarge", {0});  // the dust modules set theirs
-  dump.header_int("ndustsmall", {0});
-  dump.header_int("idust", {kPhantomDust});
-  dump.header_real("gamma", {cfg.eos == EosType::Adiabatic ? cfg.gamma : 1.0});
-  dump.header_real("hfact", {cfg.effective_hfact()});
-  dump.header_real("massoftype", types.mass);
-  std::vector<std::int8_t> itype(n);
-  for (int i = 0; i < n; ++i) itype[i] = static_cast<std::int8_t>(phantom_type(snap.type(i)));
-  dump.int1_array("itype", std::move(itype));
-  const char* const axes[] = {"x", "y", "z"};
-  const char* const velocities[] = {"vx", "vy", "vz"};
-  for (int d = 0; d < 3; ++d) dump.real_array(axes[d], component(snap.x, d));
-  for (int d = 0; d < 3; ++d) dump.real_array(velocities[d], component(snap.v, d));
-  if (cfg.eos == EosType::Adiabatic) dump.real_array("u", std::vector<double>(snap.u.data(), snap.u.data() + n));
-  std::vector<float> h(n);
-  for (int i = 0; i < n; ++i) h[i] = static_cast<float>(snap.h(i));
-  dump.real4_array("h", std::move(h));
+  write_phantom_header(phantom_types(snap), system_->config(), dump);
+  write_phantom_arrays(snap, system_->config(), dump);
   for (const auto& m : system_->modules()) m->write_phantom_dump(*system_, dump);
 }
 
