@@ -138,7 +138,7 @@ def negative_control(name, path):
 
 CASES = [
     ("sph_dustywave one-fluid, 3 species", "sph_dustywave",
-     ["dust.species=3", "dust.K=[10.0]", "dust.eps=[0.05]", "dustywave.n=32", "run.t_end=0.1",
+     ["dust.species=3", "dust.K=[10.0]", "dust.eps=[0.02, 0.05, 0.1]", "dustywave.n=32", "run.t_end=0.1",
       "output.snapshot_dt=0.05"]),
     ("sph_dustybox two-fluid, 2D", "sph_dustybox",
      ["dustybox.dim=2", "dustybox.n=8", "run.t_end=0.02", "output.snapshot_dt=0.01"]),

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""SPLASH reads mote's Phantom dumps (output.sph_format, issue 23), headless:
-a 2D two-fluid sph_dustybox run (256 gas + 256 dust particles) writes
-Phantom dumps; for the last one, `splash -f phantom -x 1 -y 2 -dev out.png
-DUMP` (Debian's splash, no display, standard input closed) must
+"""SPLASH reads mote's Phantom dumps (output.sph_format, issue 23), headless
+(Debian's splash, no display, standard input closed). A 2D two-fluid
+sph_dustybox run (256 gas + 256 dust particles) writes Phantom dumps; for the
+last one, `splash -f phantom -x 1 -y 2 -dev out.png DUMP` must
 - exit 0 and name the file as a Phantom dump with 256 gas and 256 dust particles;
 - print the x and y column ranges ("x min, max = ...") that the dump holds
   (mote.read_phantom), to the 5 significant digits it prints;
@@ -10,6 +10,13 @@ DUMP` (Debian's splash, no display, standard input closed) must
   found as the image rows and columns with the most non-background pixels,
   less a margin for the tick marks), every cell of a 4 x 4 grid holds non-background pixels, so a
   frame with nothing or a line in it fails.
+Then `splash to ascii -f phantom DUMP` of that dump and of the last dump of a
+1D one-fluid sph_dustywave run with 3 species must write every column it
+read equal to the dump (mote.read_phantom) to the 16 digits it prints
+(relative 1e-15): x, y, z, h, the velocities, u, dustfrac1..3, the particle
+mass SPLASH takes from massoftype per itype, and itype in SPLASH's own
+numbering (Phantom's types from 3 up shifted by one: its type 3 is sinks).
+(Its density column, m (hfact / h)^3, assumes 3D, and is not compared.)
 
 usage: splash_phantom.py SPLASH BINDIR WORKDIR
 """
@@ -72,4 +79,48 @@ if os.path.exists(png):
     filled = sum(bool(c.any()) for c in cells)
     checks.check(filled == 16, f"the plot is not blank: {filled} of 16 cells inside the frame hold particles "
                  f"({inside.mean():.2%} of the interior's {inside.size} pixels drawn)")
+
+
+def splash_columns(path):
+    """SPLASH's exit code and {column label: values} of `splash to ascii` of the dump at `path`."""
+    p = subprocess.run([splash, "to", "ascii", "-f", "phantom", path], stdin=subprocess.DEVNULL, capture_output=True,
+                       text=True, timeout=120)
+    if p.returncode != 0 or not os.path.exists(path + ".ascii"):
+        return p.returncode, {}
+    with open(path + ".ascii") as f:
+        lines = f.read().splitlines()
+    labels = re.split(r"\s{2,}", next(l for l in lines if l.startswith("# x "))[2:].strip())
+    data = np.loadtxt([l for l in lines if not l.startswith("#")], ndmin=2)
+    return p.returncode, dict(zip(labels, data.T))
+
+
+def expected_columns(dump, columns):
+    """{SPLASH's label: the values it should hold} for every array of the dump (None where it has no column)."""
+    arrays = dump.arrays
+    want = {label: arrays[tag] for label, tag in (("x", "x"), ("y", "y"), ("z", "z"), ("h", "h"), ("v_x", "vx"),
+                                                 ("v_y", "vy"), ("u", "u")) if tag in arrays}
+    # vz: "v_z", or under its tag when SPLASH has put it in the column it keeps for a dust fraction
+    want["v_z" if "v_z" in columns else "vz"] = arrays["vz"]
+    if "dustfrac" in arrays:
+        eps = arrays["dustfrac"].reshape(len(arrays["x"]), -1)
+        want.update({f"dustfrac{j + 1}": eps[:, j] for j in range(eps.shape[1])})
+    itype = arrays["itype"].astype(int)
+    want["particle mass"] = np.atleast_1d(dump.header["massoftype"])[itype - 1]
+    want["itype"] = np.where(itype >= 3, itype + 1, itype)
+    return want
+
+
+wave = os.path.join(work, "wave")
+run([os.path.join(bindir, "sph_dustywave"), os.path.join(ROOT, "problems", "sph_dustywave", "sph_dustywave.toml"),
+     f"output.dir={wave}", 'output.sph_format="phantom"', "dust.species=3", "dust.K=[10.0]", "dust.eps=[0.02, 0.05, 0.1]",
+     "dustywave.n=32", "run.t_end=0.1", "output.snapshot_dt=0.05"])
+for name, path in (("two-fluid 2D dustybox", dump_path),
+                   ("one-fluid 3-species dustywave", sorted(glob.glob(os.path.join(wave, "snapshot_*.phantom")))[-1])):
+    code, columns = splash_columns(path)
+    want = expected_columns(mote.read_phantom(path), columns)
+    missing = sorted(set(want) - set(columns))
+    differ = [label for label in want if label in columns and not np.allclose(columns[label], want[label], rtol=1e-15, atol=0)]
+    checks.check(code == 0 and not missing and not differ,
+                 f"splash to ascii, {name}: exit {code}, {len(want)} columns equal to the dump ({', '.join(want)})"
+                 + (f"; missing {missing}" if missing else "") + (f"; differing {differ}" if differ else ""))
 sys.exit(checks.finish())
