@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libtomlplusplus-dev libbenchmark-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-venv python3-pip python3-setuptools
   paraview python3-paraview xvfb  # tests: ParaView's XDMF readers (pvbatch), rendering under xvfb-run
+  splash  # tests: SPLASH reads the Phantom dumps of SPH problems (splash -f phantom)
 )
 
 missing=()

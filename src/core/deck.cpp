@@ -264,6 +264,8 @@ bool Deck::has_table(const std::string& table) const {
   return std::find(active_tables_.begin(), active_tables_.end(), table) != active_tables_.end();
 }
 
+bool Deck::has(const std::string& dotted) const { return values_.count(dotted) > 0; }
+
 const Value& Deck::value(const std::string& dotted, ValueType type) const {
   if (std::find(rejected_.begin(), rejected_.end(), dotted) != rejected_.end())
     throw RejectedKey("deck key '" + dotted + "' has no valid value");

@@ -131,6 +131,17 @@ void RunSettings::declare(core::DeckSchema& schema) {
       .doc("Steps between rows of history.txt.");
 }
 
+void RunSettings::declare_sph_format(core::DeckSchema& schema) {
+  schema.string("output.sph_format")
+      .restart_mutable()
+      .default_value(std::string("hdf5"))
+      .one_of({"hdf5", "phantom", "both"})
+      .doc(
+          "Snapshot format: \"hdf5\" (snapshot_NNNNN.h5 with XDMF for ParaView), \"phantom\" (snapshot_NNNNN.phantom, "
+          "Phantom's dump format for SPLASH `splash -f phantom` and sarracen; needs equal masses within each particle "
+          "type) or \"both\" (docs/output.md).");
+}
+
 RunSettings RunSettings::from_deck(const core::Deck& deck) {
   RunSettings s;
   s.t_end = deck.real("run.t_end");
@@ -146,6 +157,11 @@ RunSettings RunSettings::from_deck(const core::Deck& deck) {
   s.checkpoint_wall = deck.real("output.checkpoint_wall");
   s.checkpoints_kept = deck.integer("output.checkpoints_kept");
   s.history_every = deck.integer("output.history_every");
+  if (deck.has("output.sph_format")) {
+    const std::string& format = deck.string("output.sph_format");
+    s.hdf5_snapshots = format != "phantom";
+    s.phantom_dumps = format != "hdf5";
+  }
   return s;
 }
 
@@ -189,6 +205,16 @@ void write_hdf5(const std::string& path, const core::Comm& comm, Fill&& fill) {
   pending.commit();
 }
 
+/// The Phantom side of a simulation that output.sph_format (declared for SPH problems only) asks dumps of.
+const PhantomDumpSource& phantom_source(const Simulation& sim) {
+  const auto* source = dynamic_cast<const PhantomDumpSource*>(&sim);
+  if (!source) throw std::logic_error("output.sph_format asks for Phantom dumps of a simulation that writes none");
+  return *source;
+}
+
+/// The Gaussian-cgs unit of magnetic field of a unit system (B^2 is an energy density), Phantom's umagfd.
+double magnetic_field_unit(const units::UnitSystem& u) { return std::sqrt(u.mass / u.length) / u.time; }
+
 /// write_text_file() on rank 0; its failure is a core::IOError on every rank.
 void write_text_on_root(const std::string& path, const std::string& text, const core::Comm& comm) {
   std::string error;
@@ -207,6 +233,26 @@ void write_text_on_root(const std::string& path, const std::string& text, const 
 
 void RunLoop::write_snapshot(Simulation& sim, State& s) {
   core::ScopedTimer timer(timers_, "io::snapshot");
+  if (settings_.hdf5_snapshots) write_hdf5_snapshot(sim, s);
+  if (settings_.phantom_dumps) write_phantom_dump(sim, s);
+  s.snapshot_count += 1;
+}
+
+void RunLoop::write_phantom_dump(const Simulation& sim, const State& s) {
+  const std::string path = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "phantom");
+  PhantomDump dump(("Phantom-format dump written by mote " + std::string(MOTE_VERSION_STRING) + " (" + problem_ + ")")
+                       .substr(0, 97));
+  dump.header_real("time", {s.time});
+  phantom_source(sim).write_phantom_dump(dump);
+  dump.header_real8("udist", {units_.length});
+  dump.header_real8("umass", {units_.mass});
+  dump.header_real8("utime", {units_.time});
+  dump.header_real8("umagfd", {magnetic_field_unit(units_)});
+  write_text_on_root(path, comm_.is_root() ? dump.encode() : std::string(), comm_);
+  logging::info("  Phantom dump ", path, " (t = ", logging::format("%.6g", s.time), ")");
+}
+
+void RunLoop::write_hdf5_snapshot(Simulation& sim, const State& s) {
   const std::string path = numbered_path(settings_.output_dir, "snapshot", s.snapshot_count, "h5");
   std::string xdmf;
   write_hdf5(path, comm_, [&](H5File& file) {
@@ -220,7 +266,6 @@ void RunLoop::write_snapshot(Simulation& sim, State& s) {
     update_time_series(s.snapshot_count, xdmf);
   }
   logging::info("  snapshot ", path, " (t = ", logging::format("%.6g", s.time), ")");
-  s.snapshot_count += 1;
 }
 
 void RunLoop::update_time_series(long long index, const std::string& xdmf) {
@@ -350,6 +395,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   State s;
   std::optional<RestartSource> source;
   if (restart) source = read_checkpoint(sim, s, *restart);
+  if (settings_.phantom_dumps) phantom_source(sim).check_phantom_dump();  // before output.dir is touched
   const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
   run_id_ = directory.run_id();
   const long long start_step = s.step;

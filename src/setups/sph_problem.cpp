@@ -3,12 +3,14 @@
 
 #include "mote/core/deck.hpp"
 #include "mote/core/exit_codes.hpp"
+#include "mote/io/run_loop.hpp"
 #include "mote/sph/sph_settings.hpp"
 
 namespace mote::sph {
 
 void declare_sph_problem(core::DeckSchema& schema, const std::string& problem, const SphProblemDeclaration& what) {
   declare_settings(schema);
+  io::RunSettings::declare_sph_format(schema);
   if (!what.eos.empty()) schema.rule(io::requires_choice(problem, "sph.eos", what.eos));
   if (what.dust_methods.empty()) return;
   DustSettings::declare(schema);

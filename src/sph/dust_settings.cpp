@@ -206,6 +206,17 @@ Real DustSettings::species_value(const std::vector<Real>& list, int j) const {
   return list.size() == 1 ? list[0] : list[j];
 }
 
+std::vector<Real> DustSettings::grain_sizes() const {
+  std::vector<Real> s(nspecies, 0.0);
+  if (drag == DragLaw::Epstein)
+    for (int j = 0; j < nspecies; ++j) s[j] = species_value(sizes, j);
+  return s;
+}
+
+std::vector<Real> DustSettings::grain_densities() const {
+  return std::vector<Real>(nspecies, drag == DragLaw::Epstein ? rho_grain : 0.0);
+}
+
 void DustSettings::validate() const {
   if (nspecies < 1) throw std::invalid_argument("dust: species must be >= 1");
   auto check = [&](const std::vector<Real>& l, const char* name, bool needed) {

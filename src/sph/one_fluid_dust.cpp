@@ -11,6 +11,7 @@
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/io/h5_file.hpp"
+#include "mote/io/phantom_dump.hpp"
 #include "mote/io/snapshot.hpp"
 
 namespace mote::sph {
@@ -313,6 +314,19 @@ void OneFluidDust::write_snapshot(const SphSystem& sys, io::SnapshotWriter& out,
     for (int k = 0; k < ns; ++k)
       for (int d = 0; d < dim; ++d) vd[(static_cast<size_t>(i) * ns + k) * 3 + d] = ds.v_gas(i, d) + ds.dv(i, k, d);
   out.particle_field("dust_velocity", vd.data(), 3 * ns, {"code velocity", units.velocity()});
+}
+
+void OneFluidDust::write_phantom_dump(const SphSystem& sys, io::PhantomDump& dump) const {
+  const DustSnapshot ds = snapshot(sys.particles());
+  const int n = sys.particles().n, ns = nspecies();
+  dump.header_int("ndustsmall", {ns});
+  dump.header_real("grainsize", s_.grain_sizes());
+  dump.header_real("graindens", s_.grain_densities());
+  for (int k = 0; k < ns; ++k) {
+    std::vector<double> eps(n);
+    for (int i = 0; i < n; ++i) eps[i] = ds.eps(i, k);
+    dump.real_array("dustfrac", std::move(eps));
+  }
 }
 
 namespace {

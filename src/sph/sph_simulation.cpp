@@ -1,9 +1,11 @@
 // io::Simulation adapter of the SPH engine (see include/mote/sph/sph_simulation.hpp).
 #include "mote/sph/sph_simulation.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "mote/core/comm.hpp"
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 
@@ -45,6 +47,84 @@ void from_host(const std::vector<double>& data, const RealView2& v) {
 std::vector<std::int32_t> ints_to_host(const IntView1& v) {
   auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
   return std::vector<std::int32_t>(h.data(), h.data() + h.extent(0));
+}
+
+// Phantom's particle types (igas, idust of its part.F90; the types SPLASH's
+// read_data_sphNG.f90 labels): gas is 1, large-grain dust species j is idust + j.
+constexpr int kPhantomGas = 1, kPhantomDust = 7;
+
+int phantom_type(int type) { return type == kGas ? kPhantomGas : kPhantomDust + (type - kDust); }
+
+/// Phantom's header counts and masses of the types 1..ntypes (ntypes >= idust).
+struct PhantomTypes {
+  std::vector<std::int32_t> count;
+  std::vector<double> mass;
+};
+
+/// The types of `snap`; a core::InputError when the masses within a type differ
+/// (a Phantom dump has one mass per type, massoftype).
+PhantomTypes phantom_types(const Snapshot& snap) {
+  const int n = static_cast<int>(snap.m.extent(0));
+  int ntypes = kPhantomDust;
+  for (int i = 0; i < n; ++i) ntypes = std::max(ntypes, phantom_type(snap.type(i)));
+  if (ntypes > std::numeric_limits<std::int8_t>::max())
+    throw core::InputError(
+        logging::format("output.sph_format: Phantom's itype is an int*1, which cannot hold the %d "
+                        "particle types of this run",
+                        ntypes));
+  PhantomTypes t{std::vector<std::int32_t>(ntypes, 0), std::vector<double>(ntypes, 0.0)};
+  std::vector<int> first(ntypes, -1);
+  for (int i = 0; i < n; ++i) {
+    const int k = phantom_type(snap.type(i)) - 1;
+    if (first[k] >= 0 && snap.m(i) != t.mass[k])
+      throw core::InputError(logging::format(
+          "output.sph_format: a Phantom dump holds one mass per particle type, but particles %d and %d of mote "
+          "type %d have masses %.17g and %.17g; write this problem's snapshots as output.sph_format = \"hdf5\"",
+          first[k], i, snap.type(i), t.mass[k], snap.m(i)));
+    if (first[k] < 0) first[k] = i;
+    t.mass[k] = snap.m(i);
+    ++t.count[k];
+  }
+  return t;
+}
+
+/// Column d of an (n, dim) host array, zero for d >= dim (as the HDF5 snapshot pads it).
+std::vector<double> component(const HostView<Real**>& a, int d) {
+  std::vector<double> c(a.extent(0), 0.0);
+  if (d < static_cast<int>(a.extent(1)))
+    for (size_t i = 0; i < c.size(); ++i) c[i] = a(i, d);
+  return c;
+}
+
+void write_phantom_header(const PhantomTypes& types, const SphConfig& cfg, io::PhantomDump& dump) {
+  std::int32_t n = 0;
+  for (const auto c : types.count) n += c;
+  dump.header_int("nparttot", {n});
+  dump.header_int("ntypes", {static_cast<std::int32_t>(types.count.size())});
+  dump.header_int("npartoftype", types.count);
+  dump.header_int("nblocks", {1});
+  dump.header_int("nptmass", {0});
+  dump.header_int("ndustlarge", {0});  // the dust modules set theirs
+  dump.header_int("ndustsmall", {0});
+  dump.header_int("idust", {kPhantomDust});
+  dump.header_real("gamma", {cfg.eos == EosType::Adiabatic ? cfg.gamma : 1.0});
+  dump.header_real("hfact", {cfg.effective_hfact()});
+  dump.header_real("massoftype", types.mass);
+}
+
+void write_phantom_arrays(const Snapshot& snap, const SphConfig& cfg, io::PhantomDump& dump) {
+  const int n = static_cast<int>(snap.m.extent(0));
+  std::vector<std::int8_t> itype(n);
+  for (int i = 0; i < n; ++i) itype[i] = static_cast<std::int8_t>(phantom_type(snap.type(i)));
+  dump.int1_array("itype", std::move(itype));
+  const char* const axes[] = {"x", "y", "z"};
+  const char* const velocities[] = {"vx", "vy", "vz"};
+  for (int d = 0; d < 3; ++d) dump.real_array(axes[d], component(snap.x, d));
+  for (int d = 0; d < 3; ++d) dump.real_array(velocities[d], component(snap.v, d));
+  if (cfg.eos == EosType::Adiabatic) dump.real_array("u", std::vector<double>(snap.u.data(), snap.u.data() + n));
+  std::vector<float> h(n);
+  for (int i = 0; i < n; ++i) h[i] = static_cast<float>(snap.h(i));
+  dump.real4_array("h", std::move(h));
 }
 
 }  // namespace
@@ -154,6 +234,15 @@ void SphSimulation::load_state(const io::H5File& f) {
   }
   system_->restore_clock(f.read_attribute_real("/state", "time"), f.read_attribute_real("/state", "dt_next"),
                          f.read_attribute_int("/state", "steps"));
+}
+
+void SphSimulation::check_phantom_dump() const { phantom_types(system_->snapshot()); }
+
+void SphSimulation::write_phantom_dump(io::PhantomDump& dump) const {
+  const auto snap = system_->snapshot();
+  write_phantom_header(phantom_types(snap), system_->config(), dump);
+  write_phantom_arrays(snap, system_->config(), dump);
+  for (const auto& m : system_->modules()) m->write_phantom_dump(*system_, dump);
 }
 
 std::vector<io::Diagnostic> SphSimulation::diagnostics() const {

@@ -8,6 +8,7 @@
 
 #include "mote/core/loops.hpp"
 #include "mote/io/h5_file.hpp"
+#include "mote/io/phantom_dump.hpp"
 #include "mote/sph/kernels.hpp"
 
 namespace mote::sph {
@@ -448,6 +449,12 @@ namespace {
 const char* const kSavedFields[] = {"/state/two_fluid_rho", "/state/two_fluid_cs"};
 
 }  // namespace
+
+void TwoFluidDust::write_phantom_dump(const SphSystem&, io::PhantomDump& dump) const {
+  dump.header_int("ndustlarge", {s_.nspecies});
+  dump.header_real("grainsize", s_.grain_sizes());
+  dump.header_real("graindens", s_.grain_densities());
+}
 
 void TwoFluidDust::save_state(const SphSystem& sys, io::H5File& f) const {
   const Particles& p = sys.particles();

@@ -2,9 +2,10 @@
 """mote installs as a CMake package that a user's own problem builds against:
 `cmake --install` of this build into a fresh prefix puts headers, libmote, the
 problem executables (and their decks) and moteConfig.cmake there; the project
-in tests/install (my_pulse, gaussian_pulse's source under another name) is
-configured with find_package(mote) against that prefix alone, built with
-add_problem() and run for one step; the installed gaussian_pulse runs a step
+in tests/install (my_pulse, gaussian_pulse's source under another name, and
+my_dustybox, sph_dustybox's, linked to mote::setups as well) is configured
+with find_package(mote) against that prefix alone, built with add_problem()
+and run for one step (my_dustybox writing HDF5 snapshots and Phantom dumps); the installed gaussian_pulse runs a step
 of its installed deck and the installed check.py reads it (with the python/mote
 installed beside it); find_package(mote 0.2) is refused (0.x: same minor
 version only).
@@ -36,7 +37,8 @@ def timed(name, cmd, expect=0):
 
 
 timed("install", [cmake, "--install", mote_build, "--prefix", prefix])
-installed = ["include/mote/io/snapshot.hpp", "include/mote/core/kokkos_types.hpp", "lib/libmote.a",
+installed = ["include/mote/io/snapshot.hpp", "include/mote/core/kokkos_types.hpp", "include/mote/setups/lattice.hpp",
+             "lib/libmote.a", "lib/libmote_setups.a",
              "lib/cmake/mote/moteConfig.cmake", "lib/cmake/mote/moteConfigVersion.cmake",
              "lib/cmake/mote/moteTargets.cmake", "lib/cmake/mote/MoteProblem.cmake",
              "bin/gaussian_pulse", "bin/disc_pulse", "bin/sph_sod", "share/mote/problems/gaussian_pulse/gaussian_pulse.toml",
@@ -52,7 +54,7 @@ p = timed("configure", configure, expect=None)
 checks.check(p.returncode == 0, "find_package(mote 0.1) in an out-of-tree project" +
              ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-3000:]}"))
 p = timed("build", [cmake, "--build", build, "--parallel", "1"], expect=None)
-checks.check(p.returncode == 0, "add_problem(my_pulse) builds against the installed mote" +
+checks.check(p.returncode == 0, "add_problem(my_pulse), add_problem(my_dustybox) + mote::setups build against the installed mote" +
              ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-3000:]}"))
 with open(os.path.join(build, "build.ninja")) as f:
     ninja = f.read()
@@ -68,6 +70,16 @@ checks.check(p.returncode == 0 and "problem gaussian_pulse" in p.stdout,
              f"my_pulse runs a step (exit {p.returncode})" + ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-2000:]}"))
 checks.check(all(os.path.exists(os.path.join(out, f)) for f in ("snapshot_00001.h5", "snapshot_00001.xmf", "snapshots.xmf")),
              "my_pulse wrote its snapshots and XDMF")
+
+exe = os.path.join(build, "bin", "my_dustybox")
+out = os.path.join(work, "run_dustybox")
+p = timed("run my_dustybox", [exe, os.path.join(ROOT, "problems", "sph_dustybox", "sph_dustybox.toml"), f"output.dir={out}",
+                              'output.sph_format="both"', "dustybox.n=8", "run.max_steps=1", "run.progress_interval=0"],
+          expect=None)
+checks.check(p.returncode == 0 and "problem sph_dustybox" in p.stdout
+             and all(os.path.exists(os.path.join(out, f)) for f in ("snapshot_00001.h5", "snapshot_00001.phantom")),
+             f"my_dustybox (mote::setups) runs a step and writes an HDF5 snapshot and a Phantom dump (exit {p.returncode})"
+             + ("" if p.returncode == 0 else f"\n{(p.stdout + p.stderr)[-2000:]}"))
 p = timed("installed gaussian_pulse", [os.path.join(prefix, "bin", "gaussian_pulse"), os.path.join(prefix, "share/mote/problems/gaussian_pulse/gaussian_pulse.toml"),
          f"output.dir={os.path.join(work, 'installed_run')}", "run.max_steps=1", "run.progress_interval=0"], expect=None)
 checks.check(p.returncode == 0, f"the installed gaussian_pulse runs a step of its installed deck (exit {p.returncode})")

@@ -37,6 +37,8 @@ class Deck {
                     const std::vector<std::string>& overrides = {});
 
   bool has_table(const std::string& table) const;
+  /// True if the schema declares `dotted` and the deck gives it a value (its table active).
+  bool has(const std::string& dotted) const;
   bool boolean(const std::string& dotted) const;
   long long integer(const std::string& dotted) const;
   double real(const std::string& dotted) const;

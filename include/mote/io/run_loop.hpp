@@ -7,7 +7,9 @@
 // name, and the run first saves its state in a checkpoint if it can. A
 // checkpoint is only written from a state that passed the non-finite check.
 // Each snapshot also rewrites snapshots.xmf, the run's snapshots as one XDMF
-// temporal collection (one animation in ParaView).
+// temporal collection (one animation in ParaView). SPH problems may write their
+// snapshots as Phantom dumps instead or as well (output.sph_format,
+// phantom_dump.hpp), snapshot_NNNNN.phantom, for SPLASH and sarracen.
 // Its settings are the deck tables [run] and [output].
 #pragma once
 
@@ -20,6 +22,7 @@
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/timers.hpp"
 #include "mote/core/units.hpp"
+#include "mote/io/phantom_dump.hpp"
 #include "mote/io/run_directory.hpp"
 #include "mote/io/simulation.hpp"
 
@@ -39,8 +42,12 @@ struct RunSettings {
   double checkpoint_wall = 0.0;    // wall seconds; 0: off
   long long checkpoints_kept = 2;
   long long history_every = 1;
+  bool hdf5_snapshots = true;  // snapshot_NNNNN.h5 + .xmf
+  bool phantom_dumps = false;  // snapshot_NNNNN.phantom (output.sph_format, SPH problems only)
 
   static void declare(core::DeckSchema& schema);
+  /// Declares output.sph_format (SPH problems: their Simulation is a PhantomDumpSource).
+  static void declare_sph_format(core::DeckSchema& schema);
   static RunSettings from_deck(const core::Deck& deck);
 };
 
@@ -68,6 +75,8 @@ class RunLoop {
   int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
+  void write_hdf5_snapshot(Simulation& sim, const State& s);
+  void write_phantom_dump(const Simulation& sim, const State& s);
   void write_checkpoint(Simulation& sim, State& s);
   /// Adds snapshot `index` (its XDMF text) to snapshots.xmf, dropping any later ones.
   void update_time_series(long long index, const std::string& xdmf);

@@ -74,6 +74,10 @@ struct DustSettings {
   SpeciesDrag species_drag(const std::string& label) const;
   /// Per-species value of a list given with one or nspecies entries.
   Real species_value(const std::vector<Real>& list, int j) const;
+  /// Phantom dump header values (grainsize, graindens) per species: s_j and rho_grain
+  /// with Epstein drag, 0 for the drag laws that set no grain (SPLASH then labels the species "dust").
+  std::vector<Real> grain_sizes() const;
+  std::vector<Real> grain_densities() const;
   /// Throws std::invalid_argument on an inconsistent set.
   void validate() const;
 };

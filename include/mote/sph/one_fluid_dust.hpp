@@ -62,6 +62,8 @@ class OneFluidDust : public SphModule {
   void reorder(ParticleReorder& r) override;
   void add_diagnostics(const SphSystem& sys, Diagnostics& dg) const override;
   void write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const override;
+  /// ndustsmall = N and one array "dustfrac" per species (eps_j, Phantom's tag for each of them).
+  void write_phantom_dump(const SphSystem& sys, io::PhantomDump& dump) const override;
   void save_state(const SphSystem& sys, io::H5File& f) const override;
   void load_state(SphSystem& sys, const io::H5File& f) override;
 

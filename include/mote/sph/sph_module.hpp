@@ -29,6 +29,7 @@
 namespace mote::io {
 class SnapshotWriter;
 class H5File;
+class PhantomDump;
 }  // namespace mote::io
 
 namespace mote::sph {
@@ -70,6 +71,8 @@ class SphModule {
   virtual std::vector<io::Diagnostic> history(const SphSystem&) const { return {}; }
   /// Snapshot fields, in id order, after the gas fields.
   virtual void write_snapshot(const SphSystem&, io::SnapshotWriter&, const units::UnitSystem&) const {}
+  /// Phantom dump arrays and header values (in id order), after the gas ones (sph_simulation.hpp).
+  virtual void write_phantom_dump(const SphSystem&, io::PhantomDump&) const {}
   /// Checkpoint state under /state (n particles in storage order).
   virtual void save_state(const SphSystem&, io::H5File&) const {}
   virtual void load_state(SphSystem&, const io::H5File&) {}

@@ -70,6 +70,8 @@ class TwoFluidDust : public SphModule {
   void reorder(ParticleReorder& r) override;
   void add_diagnostics(const SphSystem& sys, Diagnostics& dg) const override;
   std::vector<io::Diagnostic> history(const SphSystem& sys) const override;
+  /// ndustlarge = N (the dust species are the particle types Phantom's idust + j).
+  void write_phantom_dump(const SphSystem& sys, io::PhantomDump& dump) const override;
   void save_state(const SphSystem& sys, io::H5File& f) const override;
   void load_state(SphSystem& sys, const io::H5File& f) override;
 
