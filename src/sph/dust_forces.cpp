@@ -18,7 +18,6 @@
 // deck's choices (dust variable, discretisation and pair coefficient, energy
 // equation, PdV form, drag law, stopping-time limiter) are template parameters
 // of the loops, chosen once per call by run_loops(): no kernel branches on them.
-#include <stdexcept>
 #include <type_traits>
 
 #include "mote/core/loops.hpp"
@@ -87,15 +86,44 @@ Shape shape_of(const DustSettings& st, const SphConfig& cfg) {
   return s;
 }
 
-/// Calls f(std::integral_constant<T, V>{}) for the listed V equal to v.
-template <class T, T... Vs, class F>
-void with_value(T v, F&& f) {
-  const bool found = ((v == Vs ? (f(std::integral_constant<T, Vs>{}), true) : false) || ...);
-  if (!found) throw std::logic_error("sph::dust_forces: unhandled loop shape");
-}
+/// Calls f(std::integral_constant<..., v>{}) for the run-time value v.
 template <class F>
 void with_bool(bool v, F&& f) {
-  with_value<bool, false, true>(v, f);
+  if (v)
+    f(std::true_type{});
+  else
+    f(std::false_type{});
+}
+template <class F>
+void with_energy(GasEnergy e, F&& f) {
+  switch (e) {
+    case GasEnergy::None:
+      f(std::integral_constant<GasEnergy, GasEnergy::None>{});
+      return;
+    case GasEnergy::U:
+      f(std::integral_constant<GasEnergy, GasEnergy::U>{});
+      return;
+    case GasEnergy::UTilde:
+      f(std::integral_constant<GasEnergy, GasEnergy::UTilde>{});
+      return;
+  }
+}
+template <class F>
+void with_term(DustTerm t, F&& f) {
+  switch (t) {
+    case DustTerm::None:
+      f(std::integral_constant<DustTerm, DustTerm::None>{});
+      return;
+    case DustTerm::EpsMean:
+      f(std::integral_constant<DustTerm, DustTerm::EpsMean>{});
+      return;
+    case DustTerm::EpsDonor:
+      f(std::integral_constant<DustTerm, DustTerm::EpsDonor>{});
+      return;
+    case DustTerm::SqrtRhoEps:
+      f(std::integral_constant<DustTerm, DustTerm::SqrtRhoEps>{});
+      return;
+  }
 }
 
 /// Stopping time T_sj of species j (eps_j, eps, rho, c_s of the particle): the laws of dust_drag.hpp.
@@ -144,109 +172,120 @@ KOKKOS_INLINE_FUNCTION Real species_eps(const RealView2& var, int a, int j) {
 
 // EOS from the gas density and drag times (PL15 eq. 14; HPL18 eq. 14-17, 31-32).
 template <bool Svar, GasEnergy E, bool LimitTs, class Law>
+struct PrepareKernel {
+  LoopData d;
+  Law law;
+  KOKKOS_INLINE_FUNCTION void operator()(int a) const {
+    const int ns = d.ns;
+    const auto& rho = d.rho;
+    const auto& u = d.u;
+    const auto& P = d.P;
+    const auto& cs = d.cs;
+    const auto& h = d.h;
+    const auto& var = d.var;
+    const auto& ts = d.ts;
+    const auto& coef = d.coef;
+    const auto& eps_tot = d.eps_tot;
+    const auto& eps_ts = d.eps_ts;
+    const auto& d_tot = d.d_tot;
+    const auto& uloc = d.uloc;
+    const Real gamma = d.gamma, cs0 = d.cs0;
+    const Real rhoa = rho(a);
+    Real e = 0.0;
+    for (int j = 0; j < ns; ++j) e += species_eps<Svar>(var, a, j);
+    const Real fg = 1.0 - e;  // gas fraction
+    eps_tot(a) = e;
+    Real ua = 0.0;
+    if constexpr (E == GasEnergy::None) {
+      P(a) = pressure_isothermal(fg * rhoa, cs0);
+      cs(a) = cs0;
+    } else if constexpr (E == GasEnergy::UTilde) {
+      P(a) = pressure_adiabatic(rhoa, u(a), gamma);  // HPL18 eq. 32
+      ua = u(a) / fg;
+      cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
+    } else {
+      ua = u(a);
+      P(a) = pressure_adiabatic(fg * rhoa, ua, gamma);  // PL15 eq. 14
+      cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
+    }
+    uloc(a) = ua;
+    Real sum_ts = 0.0;
+    for (int j = 0; j < ns; ++j) {
+      Real ej = species_eps<Svar>(var, a, j);
+      ej = ej > 0.0 ? ej : 0.0;
+      Real t = law(j, ej, e, rhoa, cs(a));
+      if constexpr (LimitTs)
+        if (t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
+      ts(a, j) = t;
+      sum_ts += ej * t;
+    }
+    eps_ts(a) = sum_ts;
+    Real dsum = 0.0;
+    for (int j = 0; j < ns; ++j) {
+      Real ej = species_eps<Svar>(var, a, j);
+      ej = ej > 0.0 ? ej : 0.0;
+      const Real tt = (ts(a, j) - sum_ts) / fg;  // HPL18 eq. 15
+      coef(a, j) = Svar ? tt : ej * tt;
+      dsum += ej * tt;
+    }
+    d_tot(a) = dsum;
+  }
+};
+
+template <bool Svar, GasEnergy E, bool LimitTs, class Law>
 void prepare(const LoopData& d, const Law& law) {
-  const int ns = d.ns;
-  const auto rho = d.rho;
-  const auto u = d.u;
-  const auto P = d.P;
-  const auto cs = d.cs;
-  const auto h = d.h;
-  const auto var = d.var;
-  const auto ts = d.ts;
-  const auto coef = d.coef;
-  const auto eps_tot = d.eps_tot;
-  const auto eps_ts = d.eps_ts;
-  const auto d_tot = d.d_tot;
-  const auto uloc = d.uloc;
-  const Real gamma = d.gamma, cs0 = d.cs0;
-  par_for(
-      "sph::dust_prepare", 0, d.n, KOKKOS_LAMBDA(int a) {
-        const Real rhoa = rho(a);
-        Real e = 0.0;
-        for (int j = 0; j < ns; ++j) e += species_eps<Svar>(var, a, j);
-        const Real fg = 1.0 - e;  // gas fraction
-        eps_tot(a) = e;
-        Real ua = 0.0;
-        if constexpr (E == GasEnergy::None) {
-          P(a) = pressure_isothermal(fg * rhoa, cs0);
-          cs(a) = cs0;
-        } else if constexpr (E == GasEnergy::UTilde) {
-          P(a) = pressure_adiabatic(rhoa, u(a), gamma);  // HPL18 eq. 32
-          ua = u(a) / fg;
-          cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
-        } else {
-          ua = u(a);
-          P(a) = pressure_adiabatic(fg * rhoa, ua, gamma);  // PL15 eq. 14
-          cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
-        }
-        uloc(a) = ua;
-        Real sum_ts = 0.0;
-        for (int j = 0; j < ns; ++j) {
-          Real ej = species_eps<Svar>(var, a, j);
-          ej = ej > 0.0 ? ej : 0.0;
-          Real t = law(j, ej, e, rhoa, cs(a));
-          if constexpr (LimitTs)
-            if (t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
-          ts(a, j) = t;
-          sum_ts += ej * t;
-        }
-        eps_ts(a) = sum_ts;
-        Real dsum = 0.0;
-        for (int j = 0; j < ns; ++j) {
-          Real ej = species_eps<Svar>(var, a, j);
-          ej = ej > 0.0 ? ej : 0.0;
-          const Real tt = (ts(a, j) - sum_ts) / fg;  // HPL18 eq. 15
-          coef(a, j) = Svar ? tt : ej * tt;
-          dsum += ej * tt;
-        }
-        d_tot(a) = dsum;
-      });
+  par_for("sph::dust_prepare", 0, d.n, PrepareKernel<Svar, E, LimitTs, Law>{d, law});
 }
 
 template <int Dim, bool Svar>
+struct PackKernel {
+  LoopData d;
+  KOKKOS_INLINE_FUNCTION void operator()(int i) const {
+    const int ns = d.ns;
+    const auto& pk = d.pk;
+    const auto& x = d.x;
+    const auto& vel = d.vel;
+    const auto& var = d.var;
+    const auto& sv = d.sv;
+    const auto& h = d.h;
+    const auto& m = d.m;
+    const auto& rho = d.rho;
+    const auto& omega = d.omega;
+    const auto& P = d.P;
+    const auto& cs = d.cs;
+    const auto& alpha = d.alpha;
+    const auto& uloc = d.uloc;
+    const auto& eps_tot = d.eps_tot;
+    const auto& d_tot = d.d_tot;
+    const auto& type = d.type;
+    if constexpr (Svar)
+      for (int j = 0; j < ns; ++j) sv(i, j) = var(i, j) * math::sqrt(rho(i));
+    for (int dd = 0; dd < Dim; ++dd) {
+      pk(i, kX + dd) = x(i, dd);
+      pk(i, kV + dd) = vel(i, dd);
+    }
+    const Real rpf = 1.0 / (omega(i) * rho(i));
+    pk(i, kH) = h(i);
+    pk(i, kHinv) = 1.0 / h(i);
+    pk(i, kM) = m(i);
+    pk(i, kPpf) = P(i) * rpf / rho(i);
+    pk(i, kRpf) = rpf;
+    pk(i, kRpfAv) = (1.0 - eps_tot(i)) * rpf;
+    pk(i, kAcs) = alpha(i) * cs(i);
+    pk(i, kCs) = cs(i);
+    pk(i, kU) = uloc(i);
+    pk(i, kIsGas) = type(i) == ParticleType::kGas ? 1.0 : 0.0;
+    pk(i, kP) = P(i);
+    pk(i, kRho) = rho(i);
+    pk(i, kDtot) = d_tot(i);
+    pk(i, kRpf2) = rpf / rho(i);
+    pk(i, kDgas) = P(i) * d_tot(i) / ((1.0 - eps_tot(i)) * rho(i));
+  }
+};
+
+template <int Dim, bool Svar>
 void pack(const LoopData& d) {
-  const int ns = d.ns;
-  const auto pk = d.pk;
-  const auto x = d.x;
-  const auto vel = d.vel;
-  const auto var = d.var;
-  const auto sv = d.sv;
-  const auto h = d.h;
-  const auto m = d.m;
-  const auto rho = d.rho;
-  const auto omega = d.omega;
-  const auto P = d.P;
-  const auto cs = d.cs;
-  const auto alpha = d.alpha;
-  const auto uloc = d.uloc;
-  const auto eps_tot = d.eps_tot;
-  const auto d_tot = d.d_tot;
-  const auto type = d.type;
-  par_for(
-      "sph::dust_pack", 0, d.n, KOKKOS_LAMBDA(int i) {
-        if constexpr (Svar)
-          for (int j = 0; j < ns; ++j) sv(i, j) = var(i, j) * math::sqrt(rho(i));
-        for (int dd = 0; dd < Dim; ++dd) {
-          pk(i, kX + dd) = x(i, dd);
-          pk(i, kV + dd) = vel(i, dd);
-        }
-        const Real rpf = 1.0 / (omega(i) * rho(i));
-        pk(i, kH) = h(i);
-        pk(i, kHinv) = 1.0 / h(i);
-        pk(i, kM) = m(i);
-        pk(i, kPpf) = P(i) * rpf / rho(i);
-        pk(i, kRpf) = rpf;
-        pk(i, kRpfAv) = (1.0 - eps_tot(i)) * rpf;
-        pk(i, kAcs) = alpha(i) * cs(i);
-        pk(i, kCs) = cs(i);
-        pk(i, kU) = uloc(i);
-        pk(i, kIsGas) = type(i) == ParticleType::kGas ? 1.0 : 0.0;
-        pk(i, kP) = P(i);
-        pk(i, kRho) = rho(i);
-        pk(i, kDtot) = d_tot(i);
-        pk(i, kRpf2) = rpf / rho(i);
-        pk(i, kDgas) = P(i) * d_tot(i) / ((1.0 - eps_tot(i)) * rho(i));
-      });
+  par_for("sph::dust_pack", 0, d.n, PackKernel<Dim, Svar>{d});
 }
 
 /// Pair (a, b) contribution of the dust equation with direct second
@@ -294,158 +333,168 @@ struct SecondDerivativeTerm {
 };
 
 template <int Dim, class K, DustTerm T, GasEnergy E, bool GasPdV>
+struct ForceKernel {
+  LoopData d;
+  SecondDerivativeTerm<T> dust_term;
+  KOKKOS_INLINE_FUNCTION void operator()(int a) const {
+    constexpr bool energy = E != GasEnergy::None;
+    constexpr bool second = T != DustTerm::None;
+    static_assert(energy || !GasPdV, "dust.pdv = \"gas\" needs an energy equation");
+    const int ns = d.ns;
+    const auto& pk = d.pk;
+    const auto& acc = d.acc;
+    const auto& gforce = d.gforce;
+    const auto& dvar = d.dvar;
+    const auto& coef = d.coef;
+    const auto& dudt = d.dudt;
+    const auto& divv = d.divv;
+    const auto& vsig = d.vsig;
+    const auto& eps_tot = d.eps_tot;
+    const auto& offsets = d.offsets;
+    const auto& neigh = d.neigh;
+    const auto& image = d.image;
+    const Box& box = d.box;
+    const Real beta = d.beta, alpha_u = d.alpha_u;
+    const Real R = K::radius();
+    Real du_d = 0.0, du_w = 0.0, sumc = 0.0;
+    HydroSums sum(pk(a, kCs));
+    if constexpr (second)
+      for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
+    if (pk(a, kIsGas) == 0.0) {
+      for (int dd = 0; dd < Dim; ++dd) {
+        acc(a, dd) = 0.0;
+        gforce(a, dd) = 0.0;
+      }
+      dudt(a) = 0.0;
+      divv(a) = 0.0;
+      vsig(a) = sum.vs;
+      return;
+    }
+    Real xa[3] = {0, 0, 0}, va[3] = {0, 0, 0};
+    for (int dd = 0; dd < Dim; ++dd) {
+      xa[dd] = pk(a, kX + dd);
+      va[dd] = pk(a, kV + dd);
+    }
+    const Real ha = pk(a, kH), ha_inv = 1.0 / ha;
+    const Real rpfa = pk(a, kRpf);
+    const Real ua = pk(a, kU), Pa = pk(a, kP), rhoa = pk(a, kRho), dta = pk(a, kDtot), dga = pk(a, kDgas);
+    // AV with (1 - eps): PL15 eq. 31 / HPL18 eq. 57; (1 - eps_a) du/dt: PL15 eq. 27 first term.
+    const HydroSide sa{pk(a, kPpf), pk(a, kRpfAv), pk(a, kAcs), rpfa, ua, pk(a, kCs)};
+    const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
+    const int jend = offsets(a + 1);
+    for (int jj = offsets(a); jj < jend; ++jj) {
+      const int b = neigh(jj);
+      PairGeometry<Dim, K> g;
+      if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
+      const Real hb = pk(b, kH);
+      const bool inside = g.r2 < R * R * ha * ha || g.r2 < R * R * hb * hb;
+      g.gradients(ha_inv, norm_a, pk(b, kHinv));
+      g.approach(va, pk, kV, b);
+      const Real ub = pk(b, kU);
+      const HydroSide sb{pk(b, kPpf), pk(b, kRpfAv), pk(b, kAcs), pk(b, kRpf), ub, pk(b, kCs)};
+      const Real mb = pk(b, kM);
+      sum.add<energy>(g, inside, sa, sb, mb, beta, alpha_u);
+      if constexpr (GasPdV) {
+        // (1 - eps_a) du_a/dt += (1/rho) div(D' grad P), D' = P D / rho_g, in the form of PL15 eq. 43.
+        du_w += mb / (rhoa * pk(b, kRho)) * (Pa - pk(b, kP)) * 0.5 * (g.fa + g.fb) * g.rinv * (dga + pk(b, kDgas));
+      }
+      if constexpr (second) {
+        const Real fbar_r = 0.5 * (g.fa + g.fb) * g.rinv;
+        dust_term.add(a, b, mb, rhoa, pk(b, kRho), Pa - pk(b, kP), fbar_r, ua, ub, dta, pk(b, kDtot), sumc, du_d);
+      }
+    }
+    if constexpr (T == DustTerm::EpsMean)
+      for (int j = 0; j < ns; ++j) dvar(a, j) -= sumc * coef(a, j);
+    for (int dd = 0; dd < Dim; ++dd) {
+      acc(a, dd) = sum.acc[dd];
+      gforce(a, dd) = -sum.acc[dd];
+    }
+    const Real fg = 1.0 - eps_tot(a);
+    if constexpr (E == GasEnergy::None)
+      dudt(a) = 0.0;
+    else if constexpr (E == GasEnergy::UTilde)
+      dudt(a) = sum.du + du_w;
+    else
+      dudt(a) = (sum.du + du_d + du_w) / fg;
+    divv(a) = sum.dv * rpfa;
+    vsig(a) = sum.vs;
+  }
+};
+
+template <int Dim, class K, DustTerm T, GasEnergy E, bool GasPdV>
 void force_loop(const LoopData& d) {
-  constexpr bool energy = E != GasEnergy::None;
-  constexpr bool second = T != DustTerm::None;
-  static_assert(energy || !GasPdV, "dust.pdv = \"gas\" needs an energy equation");
-  const int ns = d.ns;
-  const auto pk = d.pk;
-  const auto acc = d.acc;
-  const auto gforce = d.gforce;
-  const auto dvar = d.dvar;
-  const auto coef = d.coef;
-  const auto dudt = d.dudt;
-  const auto divv = d.divv;
-  const auto vsig = d.vsig;
-  const auto eps_tot = d.eps_tot;
-  const auto offsets = d.offsets;
-  const auto neigh = d.neigh;
-  const auto image = d.image;
-  const Box box = d.box;
-  const Real beta = d.beta, alpha_u = d.alpha_u;
-  const Real R = K::radius();
-  const SecondDerivativeTerm<T> dust_term{d.dvar, d.coef, d.sv, ns};
-  par_for(
-      "sph::dust_forces", 0, d.n, KOKKOS_LAMBDA(int a) {
-        Real du_d = 0.0, du_w = 0.0, sumc = 0.0;
-        HydroSums sum(pk(a, kCs));
-        if constexpr (second)
-          for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
-        if (pk(a, kIsGas) == 0.0) {
-          for (int dd = 0; dd < Dim; ++dd) {
-            acc(a, dd) = 0.0;
-            gforce(a, dd) = 0.0;
-          }
-          dudt(a) = 0.0;
-          divv(a) = 0.0;
-          vsig(a) = sum.vs;
-          return;
-        }
-        Real xa[3] = {0, 0, 0}, va[3] = {0, 0, 0};
-        for (int dd = 0; dd < Dim; ++dd) {
-          xa[dd] = pk(a, kX + dd);
-          va[dd] = pk(a, kV + dd);
-        }
-        const Real ha = pk(a, kH), ha_inv = 1.0 / ha;
-        const Real rpfa = pk(a, kRpf);
-        const Real ua = pk(a, kU), Pa = pk(a, kP), rhoa = pk(a, kRho), dta = pk(a, kDtot), dga = pk(a, kDgas);
-        // AV with (1 - eps): PL15 eq. 31 / HPL18 eq. 57; (1 - eps_a) du/dt: PL15 eq. 27 first term.
-        const HydroSide sa{pk(a, kPpf), pk(a, kRpfAv), pk(a, kAcs), rpfa, ua, pk(a, kCs)};
-        const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
-        const int jend = offsets(a + 1);
-        for (int jj = offsets(a); jj < jend; ++jj) {
-          const int b = neigh(jj);
-          PairGeometry<Dim, K> g;
-          if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
-          const Real hb = pk(b, kH);
-          const bool inside = g.r2 < R * R * ha * ha || g.r2 < R * R * hb * hb;
-          g.gradients(ha_inv, norm_a, pk(b, kHinv));
-          g.approach(va, pk, kV, b);
-          const Real ub = pk(b, kU);
-          const HydroSide sb{pk(b, kPpf), pk(b, kRpfAv), pk(b, kAcs), pk(b, kRpf), ub, pk(b, kCs)};
-          const Real mb = pk(b, kM);
-          sum.add<energy>(g, inside, sa, sb, mb, beta, alpha_u);
-          if constexpr (GasPdV) {
-            // (1 - eps_a) du_a/dt += (1/rho) div(D' grad P), D' = P D / rho_g, in the form of PL15 eq. 43.
-            du_w += mb / (rhoa * pk(b, kRho)) * (Pa - pk(b, kP)) * 0.5 * (g.fa + g.fb) * g.rinv * (dga + pk(b, kDgas));
-          }
-          if constexpr (second) {
-            const Real fbar_r = 0.5 * (g.fa + g.fb) * g.rinv;
-            dust_term.add(a, b, mb, rhoa, pk(b, kRho), Pa - pk(b, kP), fbar_r, ua, ub, dta, pk(b, kDtot), sumc, du_d);
-          }
-        }
-        if constexpr (T == DustTerm::EpsMean)
-          for (int j = 0; j < ns; ++j) dvar(a, j) -= sumc * coef(a, j);
-        for (int dd = 0; dd < Dim; ++dd) {
-          acc(a, dd) = sum.acc[dd];
-          gforce(a, dd) = -sum.acc[dd];
-        }
-        const Real fg = 1.0 - eps_tot(a);
-        if constexpr (E == GasEnergy::None)
-          dudt(a) = 0.0;
-        else if constexpr (E == GasEnergy::UTilde)
-          dudt(a) = sum.du + du_w;
-        else
-          dudt(a) = (sum.du + du_d + du_w) / fg;
-        divv(a) = sum.dv * rpfa;
-        vsig(a) = sum.vs;
-      });
+  par_for("sph::dust_forces", 0, d.n, ForceKernel<Dim, K, T, E, GasPdV>{d, {d.dvar, d.coef, d.sv, d.ns}});
 }
 
 // Two first derivatives: PL15 eq. 26 / B7 with (1 - eps) Delta f = -a_hydro (eq. 29-30);
 // AddsHeat: the u equation (not u~) takes the diffusion part of PL15 eq. 27.
 template <int Dim, class K, bool Svar, bool AddsHeat>
+struct FirstDerivativeKernel {
+  LoopData d;
+  KOKKOS_INLINE_FUNCTION void operator()(int a) const {
+    const int ns = d.ns;
+    const auto& pk = d.pk;
+    const auto& gforce = d.gforce;
+    const auto& dvar = d.dvar;
+    const auto& coef = d.coef;
+    const auto& sv = d.sv;
+    const auto& dudt = d.dudt;
+    const auto& eps_tot = d.eps_tot;
+    const auto& offsets = d.offsets;
+    const auto& neigh = d.neigh;
+    const auto& image = d.image;
+    const Box& box = d.box;
+    for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
+    if (pk(a, kIsGas) == 0.0) return;
+    Real xa[3] = {0, 0, 0}, ga[3] = {0, 0, 0};
+    for (int dd = 0; dd < Dim; ++dd) {
+      xa[dd] = pk(a, kX + dd);
+      ga[dd] = gforce(a, dd);
+    }
+    const Real ha_inv = pk(a, kHinv);
+    const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
+    const Real rpfa = pk(a, kRpf), rpf2a = pk(a, kRpf2), ua = pk(a, kU), rhoa = pk(a, kRho), dta = pk(a, kDtot);
+    Real sum_a = 0.0, du_d = 0.0;
+    const int jend = offsets(a + 1);
+    for (int jj = offsets(a); jj < jend; ++jj) {
+      const int b = neigh(jj);
+      PairGeometry<Dim, K> g;
+      if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
+      g.gradients(ha_inv, norm_a, pk(b, kHinv));
+      Real gra = 0.0, grb = 0.0;
+      for (int dd = 0; dd < Dim; ++dd) {
+        gra += ga[dd] * g.dx[dd];
+        grb += gforce(b, dd) * g.dx[dd];
+      }
+      gra *= g.rinv;
+      grb *= g.rinv;
+      const Real mb = pk(b, kM);
+      const Real ub = pk(b, kU);
+      if constexpr (!Svar) {
+        const Real A = rpfa * gra * g.fa, B = pk(b, kRpf) * grb * g.fb;
+        sum_a += mb * A;
+        for (int j = 0; j < ns; ++j) dvar(a, j) -= mb * B * coef(b, j);
+        du_d -= dta * mb * (ua - ub) * A;  // PL15 eq. 27, second term
+      } else {
+        const Real A = rpf2a * gra * g.fa, B = pk(b, kRpf2) * grb * g.fb;
+        Real e = 0.0;
+        for (int j = 0; j < ns; ++j) {
+          const Real sb = sv(b, j);
+          dvar(a, j) -= 0.5 * rhoa * mb * sb * (coef(a, j) * A + coef(b, j) * B);  // eq. B7
+          e += sv(a, j) * coef(a, j) * sb;
+        }
+        du_d -= mb * (ua - ub) * A * e;
+      }
+    }
+    if constexpr (!Svar)
+      for (int j = 0; j < ns; ++j) dvar(a, j) -= sum_a * coef(a, j);
+    if constexpr (AddsHeat) dudt(a) += du_d / (1.0 - eps_tot(a));
+  }
+};
+
+template <int Dim, class K, bool Svar, bool AddsHeat>
 void first_derivatives(const LoopData& d) {
-  const int ns = d.ns;
-  const auto pk = d.pk;
-  const auto gforce = d.gforce;
-  const auto dvar = d.dvar;
-  const auto coef = d.coef;
-  const auto sv = d.sv;
-  const auto dudt = d.dudt;
-  const auto eps_tot = d.eps_tot;
-  const auto offsets = d.offsets;
-  const auto neigh = d.neigh;
-  const auto image = d.image;
-  const Box box = d.box;
-  par_for(
-      "sph::dust_first", 0, d.n, KOKKOS_LAMBDA(int a) {
-        for (int j = 0; j < ns; ++j) dvar(a, j) = 0.0;
-        if (pk(a, kIsGas) == 0.0) return;
-        Real xa[3] = {0, 0, 0}, ga[3] = {0, 0, 0};
-        for (int dd = 0; dd < Dim; ++dd) {
-          xa[dd] = pk(a, kX + dd);
-          ga[dd] = gforce(a, dd);
-        }
-        const Real ha_inv = pk(a, kHinv);
-        const Real norm_a = K::norm() * ipow<Dim + 1>(ha_inv);
-        const Real rpfa = pk(a, kRpf), rpf2a = pk(a, kRpf2), ua = pk(a, kU), rhoa = pk(a, kRho), dta = pk(a, kDtot);
-        Real sum_a = 0.0, du_d = 0.0;
-        const int jend = offsets(a + 1);
-        for (int jj = offsets(a); jj < jend; ++jj) {
-          const int b = neigh(jj);
-          PairGeometry<Dim, K> g;
-          if (!g.separate(box, xa, pk, kX, b, image(jj)) || pk(b, kIsGas) == 0.0) continue;
-          g.gradients(ha_inv, norm_a, pk(b, kHinv));
-          Real gra = 0.0, grb = 0.0;
-          for (int dd = 0; dd < Dim; ++dd) {
-            gra += ga[dd] * g.dx[dd];
-            grb += gforce(b, dd) * g.dx[dd];
-          }
-          gra *= g.rinv;
-          grb *= g.rinv;
-          const Real mb = pk(b, kM);
-          const Real ub = pk(b, kU);
-          if constexpr (!Svar) {
-            const Real A = rpfa * gra * g.fa, B = pk(b, kRpf) * grb * g.fb;
-            sum_a += mb * A;
-            for (int j = 0; j < ns; ++j) dvar(a, j) -= mb * B * coef(b, j);
-            du_d -= dta * mb * (ua - ub) * A;  // PL15 eq. 27, second term
-          } else {
-            const Real A = rpf2a * gra * g.fa, B = pk(b, kRpf2) * grb * g.fb;
-            Real e = 0.0;
-            for (int j = 0; j < ns; ++j) {
-              const Real sb = sv(b, j);
-              dvar(a, j) -= 0.5 * rhoa * mb * sb * (coef(a, j) * A + coef(b, j) * B);  // eq. B7
-              e += sv(a, j) * coef(a, j) * sb;
-            }
-            du_d -= mb * (ua - ub) * A * e;
-          }
-        }
-        if constexpr (!Svar)
-          for (int j = 0; j < ns; ++j) dvar(a, j) -= sum_a * coef(a, j);
-        if constexpr (AddsHeat) dudt(a) += du_d / (1.0 - eps_tot(a));
-      });
+  par_for("sph::dust_first", 0, d.n, FirstDerivativeKernel<Dim, K, Svar, AddsHeat>{d});
 }
 
 // The stored variable is q_j = S_j / sqrt(rho) = sqrt(eps_j): dq/dt = (dS/dt)_pairs / sqrt(rho).
@@ -510,7 +559,7 @@ void run_loops(const LoopData& d, const Shape& s, const OneFluidDust& dust) {
   using T = DustTerm;
   with_bool(s.svar, [&](auto svar) {
     constexpr bool Svar = decltype(svar)::value;
-    with_value<E, E::None, E::U, E::UTilde>(s.energy, [&](auto energy) {
+    with_energy(s.energy, [&](auto energy) {
       constexpr E En = decltype(energy)::value;
       with_bool(s.limit_ts, [&](auto limit) {
         prepare_with_law<Svar, En, decltype(limit)::value>(d, s, dust, dust.settings().rho_grain);
@@ -518,8 +567,8 @@ void run_loops(const LoopData& d, const Shape& s, const OneFluidDust& dust) {
     });
     dispatch(d.dim, d.kernel, Pack<Svar>{d});
   });
-  with_value<T, T::None, T::EpsMean, T::EpsDonor, T::SqrtRhoEps>(s.term, [&](auto term) {
-    with_value<E, E::None, E::U, E::UTilde>(s.energy, [&](auto energy) {
+  with_term(s.term, [&](auto term) {
+    with_energy(s.energy, [&](auto energy) {
       with_bool(s.gas_pdv, [&](auto pdv) {
         constexpr E En = decltype(energy)::value;
         constexpr bool Pdv = decltype(pdv)::value;
