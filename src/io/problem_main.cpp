@@ -204,6 +204,8 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     return loop.run(*sim, restart);
   } catch (const core::InputError& e) {
     return report(e, comm);
+  } catch (const core::PeerIOError& e) {
+    return core::exit_code_of(e);  // reported by the rank that failed
   } catch (const std::exception& e) {
     logging::error(e.what());
     return core::exit_code_of(e);

@@ -189,7 +189,7 @@ void write_hdf5(const std::string& path, const core::Comm& comm, Fill&& fill) {
   pending.commit();
 }
 
-/// write_text_file() on rank 0; its failure is a core::IOError on every rank.
+/// write_text_file() on rank 0; its failure is a core::IOError on rank 0 and a core::PeerIOError on the others.
 void write_text_on_root(const std::string& path, const std::string& text, const core::Comm& comm) {
   std::string error;
   if (comm.is_root()) {
@@ -199,8 +199,9 @@ void write_text_on_root(const std::string& path, const std::string& text, const 
       error = e.what();
     }
   }
-  if (comm.broadcast(error.empty() ? 0 : 1) != 0)
-    throw core::IOError(comm.is_root() ? error : "rank 0 could not write '" + path + "'");
+  if (comm.broadcast(error.empty() ? 0 : 1) == 0) return;
+  if (comm.is_root()) throw core::IOError(error);
+  throw core::PeerIOError("rank 0 could not write '" + path + "'");
 }
 
 }  // namespace
@@ -257,6 +258,7 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
       file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
       file.create_group("/state");
       sim.save_state(file);
+      file.write_attributes_checksum();
     });
   } catch (const core::IOError&) {
     checkpoint_failed_ = true;
@@ -277,13 +279,14 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
 
 void RunLoop::checkpoint_after_write_error(Simulation& sim, State& s) {
   if (checkpoint_failed_ || report_non_finite(sim, s)) return;
-  logging::warn("a write failed at step ", s.step, "; writing a checkpoint before stopping");
+  if (comm_.is_root()) logging::warn("a write failed at step ", s.step, "; writing a checkpoint before stopping");
   try {
     write_checkpoint(sim, s);
   } catch (const core::IOError& e) {
-    logging::warn("the checkpoint could not be written either (", e.what(), "); ",
-                  last_checkpoint_.empty() ? "no checkpoint holds this run's state"
-                                           : "the last checkpoint is " + last_checkpoint_);
+    if (comm_.is_root())
+      logging::warn("the checkpoint could not be written either (", e.what(), "); ",
+                    last_checkpoint_.empty() ? "no checkpoint holds this run's state"
+                                             : "the last checkpoint is " + last_checkpoint_);
   }
 }
 

@@ -11,6 +11,18 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMPI_MCA_rmaps_base_oversubscribe": "1"}
 
 
+def checksums(directory, skip=()):
+    """{file name: sha256} of every regular file in directory except those in skip (and symbolic links)."""
+    import hashlib
+    sums = {}
+    for name in sorted(os.listdir(directory)):
+        path = os.path.join(directory, name)
+        if name not in skip and not os.path.islink(path):
+            with open(path, "rb") as f:
+                sums[name] = hashlib.sha256(f.read()).hexdigest()
+    return sums
+
+
 def run(cmd, expect=0, **kw):
     """Runs cmd (list); returns CompletedProcess; raises if the exit code differs from expect."""
     env = dict(os.environ, **MPI_ENV)
