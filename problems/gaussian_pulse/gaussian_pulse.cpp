@@ -83,7 +83,7 @@ class GaussianPulse final : public mote::io::Simulation {
     const int base = p.ny / comm.size(), extra = p.ny % comm.size();
     rows_ = base + (comm.rank() < extra ? 1 : 0);
     row_begin_ = comm.rank() * base + std::min(comm.rank(), extra);
-    if (rows_ < kGhost)
+    if (base < kGhost)  // the fewest rows of any rank: every rank refuses, none waits for the others
       throw mote::core::DeckError(mote::logging::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost,
                                                      " rows on each of ", comm.size(),
                                                      " ranks; increase grid.ny or use fewer ranks"));

@@ -219,7 +219,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   const int base = nr_global / size_, extra = nr_global % size_;
   nr = base + (rank_ < extra ? 1 : 0);
   i_offset = rank_ * base + std::min(rank_, extra);
-  if (nr < ng)
+  if (base < ng)  // the fewest cells of any rank: every rank refuses, none waits for the others
     throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ",
                                        size_, " ranks; increase grid.nr or use fewer ranks"));
   r_edges_global = spec.r_edges;

@@ -23,6 +23,20 @@ def checksums(directory, skip=()):
     return sums
 
 
+def run_within(cmd, time_limit, **kw):
+    """Runs cmd (list; stderr into stdout) in a session of its own; returns (exit code, output), or (None, output)
+    after killing the whole session (mpirun and its ranks) when it runs past time_limit seconds."""
+    import signal
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
+                         **kw)
+    try:
+        out = p.communicate(timeout=time_limit)[0]
+        return p.returncode, out
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        return None, p.communicate()[0] + f"\n(killed after {time_limit} s)"
+
+
 def run(cmd, expect=0, **kw):
     """Runs cmd (list); returns CompletedProcess; raises if the exit code differs from expect."""
     env = dict(os.environ, **MPI_ENV)

@@ -26,7 +26,7 @@ import sys
 
 import h5py
 
-from harness import MPI_ENV, Checks, checksums
+from harness import MPI_ENV, Checks, checksums, run_within
 
 IO_ERROR = 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 TIME_LIMIT = 60  # seconds; a run still going then has ranks waiting for each other
@@ -58,14 +58,7 @@ checks = Checks()
 def mpirun(args, limit=None):
     """Runs exe on 2 ranks with args (under a file-size limit (ranks, bytes) if given); returns (rc, output)."""
     wrapper = [sys.executable, os.path.abspath(__file__), LIMIT_OPTION, limit[0], str(limit[1])] if limit else []
-    p = subprocess.Popen([*launcher, *wrapper, exe, *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         text=True, env=ENV, cwd=work, start_new_session=True)
-    try:
-        out = p.communicate(timeout=TIME_LIMIT)[0]
-        return p.returncode, out
-    except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)  # mpirun and its ranks
-        return None, p.communicate()[0] + f"\n(killed after {TIME_LIMIT} s: the ranks did not stop together)"
+    return run_within([*launcher, *wrapper, exe, *args], TIME_LIMIT, env=ENV, cwd=work)
 
 
 def files(d, prefix, ext=".h5"):
