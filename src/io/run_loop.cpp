@@ -339,10 +339,15 @@ bool RunLoop::time_step_usable(const Simulation& sim, const State& s, double dt)
   return usable;
 }
 
-void RunLoop::progress(const State& s, double wall, long long steps_done) const {
+double remaining_wall_time(double wall, double time_at_start, double time, double t_end) {
+  if (!(wall > 0.0 && time > time_at_start)) return NAN;
+  return wall * (t_end - time) / (time - time_at_start);
+}
+
+void RunLoop::progress(const State& s, double time_at_start, double wall, long long steps_done) const {
   const double frac = settings_.t_end > 0 ? s.time / settings_.t_end : 1.0;
   const double rate = wall > 0 ? steps_done / wall : 0.0;
-  const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
+  const double eta = remaining_wall_time(wall, time_at_start, s.time, settings_.t_end);
   logging::info(logging::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
                                 100.0 * frac, logging::hms(eta).c_str(), rate));
 }
@@ -368,6 +373,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
                       restarting ? s.step : -1);
   const long long start_step = s.step;
+  const double start_time = s.time;
   if (!restarting) {
     if (report_non_finite(sim, s)) return core::kExitNonFinite;
     history.record(s.step, s.time, 0.0, sim.diagnostics());
@@ -422,7 +428,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
       last_checkpoint = wall_now();
     }
     if (s.step == start_step + 1 || wall_now() - last_progress >= settings_.progress_interval) {
-      progress(s, wall_now() - wall_start, s.step - start_step);
+      progress(s, start_time, wall_now() - wall_start, s.step - start_step);
       last_progress = wall_now();
     }
   }
@@ -430,7 +436,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   if (report_non_finite(sim, s)) return core::kExitNonFinite;
   if (!snapshot_current) write_snapshot(sim, s);
   write_checkpoint(sim, s);
-  progress(s, wall_now() - wall_start, s.step - start_step);
+  progress(s, start_time, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
   logging::info(finished ? "finished" : "stopped at run.max_steps",
                 logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)", s.step - start_step, s.time, wall,
