@@ -91,7 +91,11 @@ void declare(mote::core::DeckSchema& s) {
   s.real("analytic.x_min").default_value(1e-4).greater_than(0.0).doc("First centre mass / m0.");
   s.real("analytic.x_max").default_value(1e7).greater_than(0.0).doc("Last centre mass / m0.");
   s.real("analytic.bins_per_decade").default_value(10.0).greater_than(1.0).doc("Bins per mass decade.");
-  s.integer("analytic.cells").default_value(1LL).min(1).doc("Identical cells integrated side by side.");
+  s.integer("analytic.cells")
+      .sets_state_size()
+      .default_value(1LL)
+      .min(1)
+      .doc("Identical cells integrated side by side.");
   s.real("analytic.call_interval")
       .default_value(0.0)
       .min(0.0)

@@ -121,7 +121,7 @@ void declare(mote::core::DeckSchema& s) {
       .min(0.0)
       .unit("cm/s")
       .doc("Head-wind speed eta v_K for radial/azimuthal drift estimates (0: none).");
-  s.integer("disc.cells").default_value(1LL).min(1).doc("Identical cells integrated side by side.");
+  s.integer("disc.cells").sets_state_size().default_value(1LL).min(1).doc("Identical cells integrated side by side.");
   s.real("disc.call_interval")
       .default_value(0.0)
       .min(0.0)

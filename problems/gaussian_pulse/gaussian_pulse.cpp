@@ -83,7 +83,7 @@ class GaussianPulse final : public mote::io::Simulation {
     const int base = p.ny / comm.size(), extra = p.ny % comm.size();
     rows_ = base + (comm.rank() < extra ? 1 : 0);
     row_begin_ = comm.rank() * base + std::min(comm.rank(), extra);
-    if (rows_ < kGhost)
+    if (base < kGhost)  // the fewest rows of any rank: every rank refuses, none waits for the others
       throw mote::core::DeckError(mote::logging::cat("grid.ny = ", p.ny, " gives fewer than ", kGhost,
                                                      " rows on each of ", comm.size(),
                                                      " ranks; increase grid.ny or use fewer ranks"));
@@ -303,8 +303,8 @@ void check_extent(const mote::core::Deck& d, mote::core::DeckCheck& check) {
 
 void declare(mote::core::DeckSchema& s) {
   s.table("grid", "Periodic 2D Cartesian grid.");
-  s.integer("grid.nx").default_value(128LL).min(4).doc("Cells in x.");
-  s.integer("grid.ny").default_value(128LL).min(4).doc("Cells in y (split across MPI ranks).");
+  s.integer("grid.nx").sets_state_size().default_value(128LL).min(4).doc("Cells in x.");
+  s.integer("grid.ny").sets_state_size().default_value(128LL).min(4).doc("Cells in y (split across MPI ranks).");
   s.real("grid.x_min").default_value(0.0).unit("code length").doc("Lower x edge.");
   s.real("grid.x_max").default_value(1.0).unit("code length").doc("Upper x edge (> x_min).");
   s.real("grid.y_min").default_value(0.0).unit("code length").doc("Lower y edge.");

@@ -71,8 +71,13 @@ void declare(core::DeckSchema& s) {
   sph::declare_sph_problem(s, "sph_dustsettle", {"", {"diffusion", "multigrain", "two-fluid"}, true});
   s.rule(io::requires_choice("sph_dustsettle", "dust.drag", "epstein"));
   s.table("settle", "Disc column of the settling test (PL15 sec. 4.4.1).");
-  s.integer("settle.nx").default_value(32LL).min(4).doc("Particles across x (32: the 32 x 111 column).");
+  s.integer("settle.nx")
+      .sets_state_size()
+      .default_value(32LL)
+      .min(4)
+      .doc("Particles across x (32: the 32 x 111 column).");
   s.integer("settle.dim")
+      .sets_state_size()
       .default_value(2LL)
       .min(2)
       .max(3)

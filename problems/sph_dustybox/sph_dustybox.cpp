@@ -26,8 +26,12 @@ void declare(core::DeckSchema& s) {
       check.fail("dust.species", "sph_dustybox has one dust species");
   });
   s.table("dustybox", "Accelerated dustybox (LAB15 sec. 3).");
-  s.integer("dustybox.dim").default_value(1LL).min(1).max(3).doc("Dimension (LAB15: 1 and 3).");
-  s.integer("dustybox.n").default_value(128LL).min(4).doc("Particles per phase along each direction of [-2, 2).");
+  s.integer("dustybox.dim").sets_state_size().default_value(1LL).min(1).max(3).doc("Dimension (LAB15: 1 and 3).");
+  s.integer("dustybox.n")
+      .sets_state_size()
+      .default_value(128LL)
+      .min(4)
+      .doc("Particles per phase along each direction of [-2, 2).");
   s.real("dustybox.eps").default_value(0.01).greater_than(0.0).doc("Dust-to-gas density ratio rho_D / rho_G.");
   s.real("dustybox.v_dust").default_value(1.0).unit("code velocity").doc("Initial dust velocity along x.");
   s.real("dustybox.a_dust").default_value(0.1).unit("code acceleration").doc("Acceleration of the dust along x.");

@@ -31,7 +31,11 @@ void declare(core::DeckSchema& s) {
   sph::declare_sph_problem(s, "sph_dustydiffuse", {"isothermal"});
   sph::declare_dust_problem(s, "sph_dustydiffuse", sph::DragLaw::ConstantStoppingTime, false);
   s.table("dustydiffuse", "Dust diffusion with fixed particles (PL15 sec. 4.3).");
-  s.integer("dustydiffuse.n").default_value(50LL).min(4).doc("Particles per unit length along x (spacing 1 / n).");
+  s.integer("dustydiffuse.n")
+      .sets_state_size()
+      .default_value(50LL)
+      .min(4)
+      .doc("Particles per unit length along x (spacing 1 / n).");
   s.string("dustydiffuse.lattice")
       .default_value(std::string("close_packed"))
       .one_of({"cubic", "close_packed"})

@@ -19,7 +19,7 @@ void declare(core::DeckSchema& s) {
   sph::declare_sph_problem(s, "sph_dustywave", {"adiabatic"});
   sph::declare_dust_problem(s, "sph_dustywave", sph::DragLaw::ConstantK, true);
   s.table("dustywave", "Linear dusty wave (PL15 sec. 4.1).");
-  s.integer("dustywave.n").default_value(100LL).min(8).doc("Number of particles in [0, 1).");
+  s.integer("dustywave.n").sets_state_size().default_value(100LL).min(8).doc("Number of particles in [0, 1).");
   s.real("dustywave.amplitude")
       .default_value(1e-4)
       .greater_than(0.0)

@@ -49,7 +49,7 @@ class SodSimulation final : public sph::SphSimulation {
 void declare(core::DeckSchema& s) {
   sph::declare_sph_problem(s, "sph_sod", {"adiabatic"});
   s.table("sod", "Shock-tube set-up.");
-  s.integer("sod.dim").default_value(1LL).min(1).max(3).doc("Dimension (y, z periodic for dim > 1).");
+  s.integer("sod.dim").sets_state_size().default_value(1LL).min(1).max(3).doc("Dimension (y, z periodic for dim > 1).");
   s.real("sod.dx_left").default_value(0.002).greater_than(0.0).unit("code length").doc("Particle spacing on the left.");
   s.real("sod.cross_section")
       .default_value(0.1)

@@ -74,6 +74,7 @@ void declare(core::DeckSchema& s) {
       .doc("Grain size of the smallest species.");
   s.real("coagulation.a_max").default_value(0.1).greater_than(0.0).unit("cm").doc("Grain size of the largest species.");
   s.integer("coagulation.species")
+      .sets_state_size()
       .default_value(200LL)
       .min(2)
       .doc("Number of species (logarithmic in mass; >= 7 per mass decade recommended).");

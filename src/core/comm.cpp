@@ -2,6 +2,7 @@
 #include "mote/core/comm.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace mote::core {
@@ -37,6 +38,7 @@ double Comm::max(double x) const { return allreduce(x, MPI_DOUBLE, MPI_MAX, comm
 double Comm::sum(double x) const { return allreduce(x, MPI_DOUBLE, MPI_SUM, comm_, size_); }
 long long Comm::sum(long long x) const { return allreduce(x, MPI_LONG_LONG, MPI_SUM, comm_, size_); }
 int Comm::max(int x) const { return allreduce(x, MPI_INT, MPI_MAX, comm_, size_); }
+int Comm::min(int x) const { return allreduce(x, MPI_INT, MPI_MIN, comm_, size_); }
 
 std::vector<double> Comm::sum(const std::vector<double>& x) const {
   if (size_ == 1) return x;
@@ -63,17 +65,41 @@ void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, 
   MPI_Sendrecv(send, send_count, MPI_DOUBLE, dest < 0 ? MPI_PROC_NULL : dest, tag, recv, recv_count, MPI_DOUBLE,
                source < 0 ? MPI_PROC_NULL : source, tag, comm_, MPI_STATUS_IGNORE);
 }
+void Comm::send_bytes(const void* data, std::size_t bytes, int dest, int tag) const {
+  if (bytes > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::length_error("Comm::send_bytes: a message of more than 2^31 - 1 bytes");
+  MPI_Send(data, static_cast<int>(bytes), MPI_BYTE, dest, tag, comm_);
+}
+
+std::vector<unsigned char> Comm::receive_bytes(int source, int tag) const {
+  MPI_Status status;
+  MPI_Probe(source, tag, comm_, &status);
+  int bytes = 0;
+  MPI_Get_count(&status, MPI_BYTE, &bytes);
+  std::vector<unsigned char> data(static_cast<std::size_t>(bytes));
+  MPI_Recv(data.data(), bytes, MPI_BYTE, source, tag, comm_, MPI_STATUS_IGNORE);
+  return data;
+}
 #else
 double Comm::min(double x) const { return x; }
 double Comm::max(double x) const { return x; }
 double Comm::sum(double x) const { return x; }
 long long Comm::sum(long long x) const { return x; }
 int Comm::max(int x) const { return x; }
+int Comm::min(int x) const { return x; }
 std::vector<double> Comm::sum(const std::vector<double>& x) const { return x; }
 void Comm::barrier() const {}
 int Comm::broadcast(int x) const { return x; }
 void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
   sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
+}
+
+void Comm::send_bytes(const void*, std::size_t, int, int) const {
+  throw std::logic_error("Comm::send_bytes without MPI: there is no other rank");
+}
+
+std::vector<unsigned char> Comm::receive_bytes(int, int) const {
+  throw std::logic_error("Comm::receive_bytes without MPI: there is no other rank");
 }
 
 void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int) const {

@@ -339,8 +339,8 @@ std::vector<KeyChange> Deck::changes_to(const Deck& other) const {
     const bool same = mine == values_.end() ? theirs == other.values_.end()
                                             : theirs != other.values_.end() && mine->second == theirs->second;
     if (!same)
-      changes.push_back(
-          {spec.dotted(), text(*this, spec.dotted()), text(other, spec.dotted()), spec.is_restart_mutable()});
+      changes.push_back({spec.dotted(), text(*this, spec.dotted()), text(other, spec.dotted()),
+                         spec.is_restart_mutable(), spec.is_state_size()});
   }
   return changes;
 }

@@ -114,6 +114,10 @@ KeySpec& KeySpec::restart_mutable() {
   restart_mutable_ = true;
   return *this;
 }
+KeySpec& KeySpec::sets_state_size() {
+  state_size_ = true;
+  return *this;
+}
 
 std::string KeySpec::type_violation(const Value& value) const {
   auto finite = [](double x) { return std::isfinite(x); };
@@ -247,6 +251,7 @@ std::string DeckSchema::help_text() const {
       if (!k.unit_text().empty()) os << "  [" << k.unit_text() << "]";
       if (!k.range_text().empty()) os << "  " << k.range_text();
       if (k.is_restart_mutable()) os << "  (may change on restart)";
+      if (k.is_state_size()) os << "  (sets the state's size: never changes on restart)";
       os << "\n      " << k.doc_text() << "\n";
     }
   }
@@ -264,7 +269,8 @@ std::string DeckSchema::markdown() const {
       os << "| `" << k.key() << "` | " << type_name(k.type()) << " | "
          << (k.required() ? "**required**" : "`" + value_to_toml(*k.default_opt()) + "`") << " | " << k.unit_text()
          << " | " << k.range_text() << " | " << k.doc_text()
-         << (k.is_restart_mutable() ? " May change on restart." : "") << " |\n";
+         << (k.is_restart_mutable() ? " May change on restart." : "")
+         << (k.is_state_size() ? " Sets the state's size: never changes on restart." : "") << " |\n";
     }
     os << "\n";
   }

@@ -28,7 +28,8 @@ GasDisc::GasDisc(const GasConfig& config, const mesh::Grid& grid, const units::U
       user_ghosts_h_(Kokkos::create_mirror_view(user_ghosts_)) {
   if (grid.geometry != mesh::Geometry::Cylindrical)
     throw core::DeckError("the gas disc needs grid.geometry = \"cylindrical\" (eq. 1-3 volumes for eq. 37)");
-  if (grid.nr < 2) throw core::DeckError("the gas disc needs at least 2 radial cells per rank");
+  if (grid.nr_global / grid.comm().size() < 2)  // the fewest cells of any rank: every rank refuses
+    throw core::DeckError("the gas disc needs at least 2 radial cells per rank");
   j_mid_ = disc::midplane_index(grid);
   gas_.gravity = cfg_.gravity();
   gas_.column_fraction = disc::column_fraction(grid);

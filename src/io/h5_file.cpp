@@ -22,6 +22,7 @@ namespace {
 
 constexpr const char* kErrorLogName = "hdf5_errors.log";
 constexpr const char* kChecksumAttribute = "checksum";
+constexpr const char* kAttributesChecksum = "attributes_checksum";
 
 /// HDF5's error stack: its text (outermost call first) and the innermost description.
 struct ErrorStack {
@@ -105,11 +106,16 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+size_t element_count(const std::vector<hsize_t>& count) {
+  size_t n = 1;
+  for (const auto c : count) n *= c;
+  return n;
+}
+
 /// Sum over the elements of `block` (row-major in memory) of mix(mix(global index) ^ element bits).
 std::uint64_t block_checksum(const Block& block, size_t element_size, const void* data) {
   const size_t rank = block.count.size();
-  size_t n = 1;
-  for (const auto c : block.count) n *= c;
+  const size_t n = element_count(block.count);
   std::vector<hsize_t> index(rank, 0);
   const auto* bytes = static_cast<const unsigned char*>(data);
   std::uint64_t sum = 0;
@@ -124,6 +130,27 @@ std::uint64_t block_checksum(const Block& block, size_t element_size, const void
     }
   }
   return sum;
+}
+
+/// "16 x 32"
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  std::string text;
+  for (const auto d : dims) text += (text.empty() ? "" : " x ") + std::to_string(d);
+  return text;
+}
+
+/// Message tag of the blocks that ranks send to rank 0 for a file being built.
+constexpr int kBlockTag = 7301;
+
+/// A rank's block as one message to rank 0: its offset, its count, then its elements.
+std::vector<unsigned char> pack_block(const Block& block, size_t element_size, const void* data) {
+  const size_t half_header = block.count.size() * sizeof(hsize_t);
+  const size_t bytes = element_count(block.count) * element_size;
+  std::vector<unsigned char> message(2 * half_header + bytes);
+  std::memcpy(message.data(), block.offset.data(), half_header);
+  std::memcpy(message.data() + half_header, block.count.data(), half_header);
+  if (bytes > 0) std::memcpy(message.data() + 2 * half_header, data, bytes);
+  return message;
 }
 
 /// HDF5's in-memory driver grows its image in steps of this many bytes.
@@ -153,6 +180,39 @@ void write_bytes(const std::string& path, const char* data, size_t size) {
 
 bool is_state_dataset(const std::string& name) { return name.rfind("/state/", 0) == 0; }
 
+/// FNV-1a: `hash` extended by `size` bytes at `data`.
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (size_t k = 0; k < size; ++k) hash = (hash ^ bytes[k]) * 1099511628211ULL;
+  return hash;
+}
+
+/// The running hash of H5File::attributes_hash() over the attributes of one object.
+struct AttributeHash {
+  std::string object;
+  std::uint64_t hash = 1469598103934665603ULL;
+};
+
+/// H5Aiterate2 callback: folds the object's path, the attribute's name, type class and stored bytes into the hash.
+herr_t hash_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
+  auto& h = *static_cast<AttributeHash*>(data);
+  if (h.object == "/" && std::strcmp(name, kAttributesChecksum) == 0) return 0;
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  if (attr < 0) return -1;
+  Handle type(H5Aget_type(attr), H5Tclose);
+  Handle space(H5Aget_space(attr), H5Sclose);
+  const hssize_t points = H5Sget_simple_extent_npoints(space);
+  if (type < 0 || points < 0) return -1;
+  std::vector<unsigned char> bytes(H5Tget_size(type) * static_cast<size_t>(points));
+  if (H5Aread(attr, type, bytes.data()) < 0) return -1;
+  const int type_class = H5Tget_class(type);
+  h.hash = fnv1a(h.hash, h.object.c_str(), h.object.size() + 1);
+  h.hash = fnv1a(h.hash, name, std::strlen(name) + 1);
+  h.hash = fnv1a(h.hash, &type_class, sizeof(type_class));
+  h.hash = fnv1a(h.hash, bytes.data(), bytes.size());
+  return 0;
+}
+
 }  // namespace
 
 Block Block::whole(std::vector<hsize_t> dims) {
@@ -164,26 +224,47 @@ Block Block::whole(std::vector<hsize_t> dims) {
 }
 
 H5File::H5File(const std::string& path, Mode mode, const core::Comm& comm)
-    : path_(path), comm_(comm), exceptions_at_open_(std::uncaught_exceptions()) {
+    : path_(path), comm_(comm), building_(mode == Mode::Create), exceptions_at_open_(std::uncaught_exceptions()) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported by fail(), their stack logged
-  Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a file access list", path), H5Pclose);
-#if defined(MOTE_HAVE_MPI) && defined(MOTE_HDF5_PARALLEL)
-  if (comm_.size() > 1) check(H5Pset_fapl_mpio(fapl, comm_.raw(), MPI_INFO_NULL), "set the MPI-IO driver", path);
-#else
-  if (comm_.size() > 1) throw std::logic_error("H5File on several ranks needs MPI and a parallel HDF5");
-#endif
-  in_memory_ = mode == Mode::Create && comm_.size() == 1;
-  if (in_memory_) check(H5Pset_fapl_core(fapl, kCoreIncrement, 0), "set the in-memory driver", path);
-  if (mode == Mode::Create)
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (building_)
+    create_image();
   else
-    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
-  if (file_ < 0) fail(mode == Mode::Create ? "create the file" : "open the file", path);
+    open_for_reading();
+}
+
+void H5File::create_image() {
+  std::string error;
+  if (comm_.is_root()) {
+    try {
+      Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a file access list", path_), H5Pclose);
+      check(H5Pset_fapl_core(fapl, kCoreIncrement, 0), "set the in-memory driver", path_);
+      file_ = check_id(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "create the file", path_);
+    } catch (const core::IOError& e) {
+      error = e.what();
+    }
+  }
+  agree_with_root(error);
+}
+
+void H5File::open_for_reading() {
+  Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a file access list", path_), H5Pclose);
+#if defined(MOTE_HAVE_MPI) && defined(MOTE_HDF5_PARALLEL)
+  if (comm_.size() > 1) check(H5Pset_fapl_mpio(fapl, comm_.raw(), MPI_INFO_NULL), "set the MPI-IO driver", path_);
+#else
+  if (comm_.size() > 1) throw std::logic_error("reading an H5File on several ranks needs MPI and a parallel HDF5");
+#endif
+  file_ = check_id(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl), "open the file", path_);
+}
+
+void H5File::agree_with_root(const std::string& root_error) const {
+  if (comm_.broadcast(root_error.empty() ? 0 : 1) == 0) return;
+  if (comm_.is_root()) throw core::IOError(root_error);
+  throw core::PeerIOError("rank 0 could not write '" + path_ + "'");
 }
 
 H5File::~H5File() {
   if (file_ < 0) return;
-  if (in_memory_ && std::uncaught_exceptions() == exceptions_at_open_) {
+  if (building_ && std::uncaught_exceptions() == exceptions_at_open_) {
     try {
       write_image_of(file_);
     } catch (const std::exception& e) {
@@ -195,18 +276,21 @@ H5File::~H5File() {
 }
 
 void H5File::close() {
-  if (file_ < 0) return;
+  if (closed_) return;
+  closed_ = true;
   const hid_t file = file_;
   file_ = -1;
-  if (in_memory_) {
+  if (!building_) return check(H5Fclose(file), "close the file", path_);
+  std::string error;
+  if (file >= 0) {
     try {
       write_image_of(file);
-    } catch (...) {
-      H5Fclose(file);
-      throw;
+    } catch (const core::IOError& e) {
+      error = e.what();
     }
+    H5Fclose(file);
   }
-  check(H5Fclose(file), "flush and close the file", path_);
+  agree_with_root(error);
 }
 
 void H5File::write_image_of(hid_t file) const {
@@ -219,6 +303,7 @@ void H5File::write_image_of(hid_t file) const {
 }
 
 void H5File::create_group(const std::string& path) {
+  if (!holds_file()) return;
   std::string partial;
   size_t start = 1;
   while (start <= path.size()) {
@@ -256,31 +341,52 @@ hid_t H5File::transfer_plist() const {
 }
 
 void H5File::write_impl(const std::string& name, const Block& block, hid_t type, const void* data) {
-  const int rank = static_cast<int>(block.global_dims.size());
-  const auto slash = name.rfind('/');
-  if (slash != std::string::npos && slash > 0) create_group(name.substr(0, slash));
-  Handle filespace(
-      check_id(H5Screate_simple(rank, block.global_dims.data(), nullptr), "create the dataspace of " + name, path_),
-      H5Sclose);
-  Handle dset(check_id(H5Dcreate2(file_, name.c_str(), type, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                       "create dataset " + name, path_),
-              H5Dclose);
-  // A "whole" block is written by rank 0 alone; the others select nothing.
+  const size_t element_size = H5Tget_size(type);
+  // A "whole" block is written by rank 0 alone; the other ranks send their blocks to rank 0.
   const bool whole = block.count == block.global_dims;
   const bool writes = !whole || comm_.is_root();
-  Handle memspace(
-      check_id(H5Screate_simple(rank, block.count.data(), nullptr), "create the memory space of " + name, path_),
-      H5Sclose);
-  if (writes) {
-    check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
-          "select a block of " + name, path_);
-  } else {
-    H5Sselect_none(filespace);
-    H5Sselect_none(memspace);
+  if (!holds_file() && !whole) {
+    const std::vector<unsigned char> message = pack_block(block, element_size, data);
+    comm_.send_bytes(message.data(), message.size(), 0, kBlockTag);
   }
-  Handle dxpl(transfer_plist(), H5Pclose);
-  check(H5Dwrite(dset, type, memspace, filespace, dxpl, data), "write dataset " + name, path_);
-  if (is_state_dataset(name)) write_checksum(name, block, H5Tget_size(type), writes ? data : nullptr);
+  if (holds_file()) {
+    const auto slash = name.rfind('/');
+    if (slash != std::string::npos && slash > 0) create_group(name.substr(0, slash));
+    Handle filespace(
+        check_id(H5Screate_simple(static_cast<int>(block.global_dims.size()), block.global_dims.data(), nullptr),
+                 "create the dataspace of " + name, path_),
+        H5Sclose);
+    Handle dset(check_id(H5Dcreate2(file_, name.c_str(), type, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                         "create dataset " + name, path_),
+                H5Dclose);
+    write_block(dset, name, type, block, data);
+    for (int r = 1; r < comm_.size() && !whole; ++r) write_received_block(dset, name, type, block.global_dims, r);
+  }
+  if (is_state_dataset(name)) write_checksum(name, block, element_size, writes ? data : nullptr);
+}
+
+void H5File::write_block(hid_t dset, const std::string& name, hid_t type, const Block& block, const void* data) const {
+  if (element_count(block.count) == 0) return;
+  Handle filespace(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
+  check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
+        "select a block of " + name, path_);
+  Handle memspace(check_id(H5Screate_simple(static_cast<int>(block.count.size()), block.count.data(), nullptr),
+                           "create the memory space of " + name, path_),
+                  H5Sclose);
+  check(H5Dwrite(dset, type, memspace, filespace, H5P_DEFAULT, data), "write dataset " + name, path_);
+}
+
+void H5File::write_received_block(hid_t dset, const std::string& name, hid_t type,
+                                  const std::vector<hsize_t>& global_dims, int source) const {
+  const std::vector<unsigned char> message = comm_.receive_bytes(source, kBlockTag);
+  const size_t half_header = global_dims.size() * sizeof(hsize_t);
+  Block block;
+  block.global_dims = global_dims;
+  block.offset.resize(global_dims.size());
+  block.count.resize(global_dims.size());
+  std::memcpy(block.offset.data(), message.data(), half_header);
+  std::memcpy(block.count.data(), message.data() + half_header, half_header);
+  write_block(dset, name, type, block, message.data() + 2 * half_header);
 }
 
 void H5File::write_checksum(const std::string& name, const Block& block, size_t element_size, const void* data) {
@@ -298,7 +404,10 @@ void H5File::read_impl(const std::string& name, const Block& block, hid_t type, 
   std::vector<hsize_t> dims(static_cast<size_t>(rank));
   H5Sget_simple_extent_dims(filespace, dims.data(), nullptr);
   if (dims != block.global_dims)
-    throw std::runtime_error("dataset '" + name + "' in '" + path_ + "' has a different shape than expected");
+    throw core::InputError("dataset " + name + " in '" + path_ + "' holds " + shape_text(dims) +
+                           " values where this run needs " + shape_text(block.global_dims) +
+                           ": a restart cannot change the size of the state (a resolution or a count of particles, "
+                           "species or bands), not even with --force");
   check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
         "select a block of " + name, path_);
   Handle memspace(
@@ -334,6 +443,42 @@ std::vector<std::string> H5File::datasets(const std::string& group) const {
   return names;
 }
 
+std::vector<std::string> H5File::objects() const {
+  std::vector<std::string> names;
+  // Generic lambda: the link-info type differs between HDF5 1.10 and 1.12+.
+  const auto collect = [](hid_t, const char* name, const auto*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->push_back(std::string("/") + name);
+    return 0;
+  };
+  check(H5Lvisit(file_, H5_INDEX_NAME, H5_ITER_INC, collect, &names), "list the objects", path_);
+  names.insert(names.begin(), "/");
+  return names;
+}
+
+std::uint64_t H5File::attributes_hash() const {
+  AttributeHash h;
+  for (const auto& object : objects()) {
+    Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object, path_), H5Oclose);
+    h.object = object;
+    check(H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, nullptr, hash_attribute, &h), "read the attributes of " + object,
+          path_);
+  }
+  return h.hash;
+}
+
+void H5File::write_attributes_checksum() {
+  if (!holds_file()) return;
+  write_attribute("/", kAttributesChecksum, static_cast<std::int64_t>(attributes_hash()));
+}
+
+std::string H5File::check_attributes() const {
+  if (!has_attribute("/", kAttributesChecksum)) return "it has no checksum of its attributes";
+  if (static_cast<std::uint64_t>(read_attribute_int("/", kAttributesChecksum)) != attributes_hash())
+    return "its attributes (time, step, run id, deck, ...) do not match their checksum (the file was changed or "
+           "damaged)";
+  return {};
+}
+
 std::string H5File::check_state_dataset(const std::string& name) const {
   if (!has_attribute(name, kChecksumAttribute)) return "dataset " + name + " has no checksum";
   Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
@@ -341,8 +486,7 @@ std::string H5File::check_state_dataset(const std::string& name) const {
   const bool real = H5Tget_class(type) == H5T_FLOAT;
   const size_t size = H5Tget_size(type);
   const Block block = Block::whole(dims(name));
-  size_t n = 1;
-  for (const auto c : block.count) n *= c;
+  const size_t n = element_count(block.count);
   std::vector<std::uint64_t> buffer(n);  // 8 bytes per element suffice for every stored type
   if (real)
     read(name, block, reinterpret_cast<double*>(buffer.data()));
@@ -394,16 +538,19 @@ Handle open_attr(hid_t file, const std::string& path, const std::string& object,
 }  // namespace
 
 void H5File::write_attribute(const std::string& object, const std::string& name, double value) {
+  if (!holds_file()) return;
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   write_attr(file_, path_, object, name, H5T_NATIVE_DOUBLE, space, &value);
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, std::int64_t value) {
+  if (!holds_file()) return;
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   write_attr(file_, path_, object, name, H5T_NATIVE_INT64, space, &value);
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, const std::string& value) {
+  if (!holds_file()) return;
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(type, value.empty() ? 1 : value.size());
   H5Tset_strpad(type, H5T_STR_NULLPAD);

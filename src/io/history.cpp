@@ -49,7 +49,8 @@ HistoryFile::HistoryFile(const std::string& path, const core::Comm& comm, std::s
   }
   if (comm_.broadcast(error.empty() ? 0 : 1) != 0) {
     if (out_) std::fclose(out_);
-    throw core::IOError(comm_.is_root() ? error : "rank 0 could not start the history file '" + path + "'");
+    if (comm_.is_root()) throw core::IOError(error);
+    throw core::PeerIOError("rank 0 could not start the history file '" + path + "'");
   }
 }
 
@@ -86,8 +87,9 @@ void HistoryFile::record(long long step, double time, double dt, const std::vect
     error = out_ ? append(text + "\n") : "history file '" + path_ + "' is closed after an earlier write error";
     header_written_ = header_written_ || error.empty();
   }
-  if (comm_.broadcast(error.empty() ? 0 : 1) != 0)
-    throw core::IOError(comm_.is_root() ? error : "rank 0 could not write the history file '" + path_ + "'");
+  if (comm_.broadcast(error.empty() ? 0 : 1) == 0) return;
+  if (comm_.is_root()) throw core::IOError(error);
+  throw core::PeerIOError("rank 0 could not write the history file '" + path_ + "'");
 }
 
 }  // namespace mote::io

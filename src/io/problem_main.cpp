@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 #include <regex>
+#include <stdexcept>
 #include <vector>
 
 #include "mote/core/exit_codes.hpp"
@@ -73,7 +74,8 @@ std::string usage(const ProblemDefinition& p) {
          "  --restart latest  continue from the newest sound checkpoint in output.dir (of the directory's own\n"
          "                    run), skipping any that fails its checksum or holds non-finite values\n"
          "  --force           restart even though the deck changes keys that may not change on restart\n"
-         "  --check           validate the deck (every rule the run applies), print it resolved, and exit\n"
+         "  --check           validate the deck (every rule the run applies but those only the set-up can judge,\n"
+         "                    such as cells per MPI rank), print it resolved, and exit\n"
          "  --version         print the version of mote and exit\n"
          "  --kokkos-help     Kokkos's own options\n"
          "exit codes: 0 finished (or stopped at run.max_steps), 1 internal error, 2 invalid input,\n"
@@ -140,6 +142,17 @@ core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, con
   return core::Deck::parse(text, "deck of " + checkpoint, schema, overrides);
 }
 
+/// The problem's initial state. Its set-up may find values that the deck's rules cannot judge
+/// (rules on the rank count, on derived values): a std::invalid_argument it throws is bad input
+/// (exit 2) like a core::DeckError, before any output exists.
+std::unique_ptr<Simulation> set_up(const ProblemDefinition& problem, const ProblemContext& context) {
+  try {
+    return problem.create(context);
+  } catch (const std::invalid_argument& e) {
+    throw core::DeckError(problem.name + ": the set-up rejects the deck: " + e.what());
+  }
+}
+
 }  // namespace
 
 core::DeckRule requires_choice(const std::string& problem, const std::string& dotted, const std::string& value) {
@@ -198,12 +211,14 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     std::unique_ptr<Simulation> sim;
     {
       core::ScopedTimer timer(timers, "setup");
-      sim = problem.create(ProblemContext{*deck, comm, units, timers, restart.has_value()});
+      sim = set_up(problem, ProblemContext{*deck, comm, units, timers, restart.has_value()});
     }
     RunLoop loop(settings, problem.name, *deck, units, comm, timers);
     return loop.run(*sim, restart);
   } catch (const core::InputError& e) {
     return report(e, comm);
+  } catch (const core::PeerIOError& e) {
+    return core::exit_code_of(e);  // reported by the rank that failed
   } catch (const std::exception& e) {
     logging::error(e.what());
     return core::exit_code_of(e);

@@ -17,6 +17,7 @@ std::string checkpoint_defect(const std::string& path, const core::Comm& comm) {
     if (state.empty()) return "it holds no state datasets";
     for (const auto& name : state)
       if (std::string defect = file.check_state_dataset(name); !defect.empty()) return defect;
+    if (std::string defect = file.check_attributes(); !defect.empty()) return defect;
   } catch (const std::exception& e) {
     return std::string("it cannot be read: ") + e.what();
   }
@@ -75,6 +76,14 @@ void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, c
     logging::warn("--force: restarting without comparing the deck with the checkpoint's: ", e.what());
     return;
   }
+  std::string resized;
+  for (const auto& c : changes)
+    if (c.state_size) resized += "\n  " + describe(c);
+  if (!resized.empty())
+    throw core::DeckError("the deck changes the size of the state stored in checkpoint '" + checkpoint +
+                          "' (a resolution or a count of particles, species or bands), which no restart can change, "
+                          "not even with --force:" +
+                          resized);
   std::string refused;
   for (const auto& c : changes) {
     if (c.restart_mutable)

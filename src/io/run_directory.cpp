@@ -201,7 +201,7 @@ RunDirectory::RunDirectory(const std::string& dir, bool overwrite, const std::op
   code = comm.broadcast(code);
   if (failure) std::rethrow_exception(failure);
   if (code == core::kExitBadInput) throw core::InputError("output directory '" + dir + "' refused on rank 0");
-  if (code != core::kExitFinished) throw core::IOError("output directory '" + dir + "' failed on rank 0");
+  if (code != core::kExitFinished) throw core::PeerIOError("output directory '" + dir + "' failed on rank 0");
   run_id_ = restart ? restart->run_id : broadcast_id(run_id_, comm);
 }
 

@@ -215,7 +215,7 @@ const PhantomDumpSource& phantom_source(const Simulation& sim) {
 /// The Gaussian-cgs unit of magnetic field of a unit system (B^2 is an energy density), Phantom's umagfd.
 double magnetic_field_unit(const units::UnitSystem& u) { return std::sqrt(u.mass / u.length) / u.time; }
 
-/// write_text_file() on rank 0; its failure is a core::IOError on every rank.
+/// write_text_file() on rank 0; its failure is a core::IOError on rank 0 and a core::PeerIOError on the others.
 void write_text_on_root(const std::string& path, const std::string& text, const core::Comm& comm) {
   std::string error;
   if (comm.is_root()) {
@@ -225,8 +225,9 @@ void write_text_on_root(const std::string& path, const std::string& text, const 
       error = e.what();
     }
   }
-  if (comm.broadcast(error.empty() ? 0 : 1) != 0)
-    throw core::IOError(comm.is_root() ? error : "rank 0 could not write '" + path + "'");
+  if (comm.broadcast(error.empty() ? 0 : 1) == 0) return;
+  if (comm.is_root()) throw core::IOError(error);
+  throw core::PeerIOError("rank 0 could not write '" + path + "'");
 }
 
 }  // namespace
@@ -302,6 +303,7 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
       file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
       file.create_group("/state");
       sim.save_state(file);
+      file.write_attributes_checksum();
     });
   } catch (const core::IOError&) {
     checkpoint_failed_ = true;
@@ -322,13 +324,14 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
 
 void RunLoop::checkpoint_after_write_error(Simulation& sim, State& s) {
   if (checkpoint_failed_ || report_non_finite(sim, s)) return;
-  logging::warn("a write failed at step ", s.step, "; writing a checkpoint before stopping");
+  if (comm_.is_root()) logging::warn("a write failed at step ", s.step, "; writing a checkpoint before stopping");
   try {
     write_checkpoint(sim, s);
   } catch (const core::IOError& e) {
-    logging::warn("the checkpoint could not be written either (", e.what(), "); ",
-                  last_checkpoint_.empty() ? "no checkpoint holds this run's state"
-                                           : "the last checkpoint is " + last_checkpoint_);
+    if (comm_.is_root())
+      logging::warn("the checkpoint could not be written either (", e.what(), "); ",
+                    last_checkpoint_.empty() ? "no checkpoint holds this run's state"
+                                             : "the last checkpoint is " + last_checkpoint_);
   }
 }
 
@@ -381,10 +384,15 @@ bool RunLoop::time_step_usable(const Simulation& sim, const State& s, double dt)
   return usable;
 }
 
-void RunLoop::progress(const State& s, double wall, long long steps_done) const {
+double remaining_wall_time(double wall, double time_at_start, double time, double t_end) {
+  if (!(wall > 0.0 && time > time_at_start)) return NAN;
+  return wall * (t_end - time) / (time - time_at_start);
+}
+
+void RunLoop::progress(const State& s, double time_at_start, double wall, long long steps_done) const {
   const double frac = settings_.t_end > 0 ? s.time / settings_.t_end : 1.0;
   const double rate = wall > 0 ? steps_done / wall : 0.0;
-  const double eta = (frac > 0 && wall > 0) ? wall * (1.0 - frac) / frac : NAN;
+  const double eta = remaining_wall_time(wall, time_at_start, s.time, settings_.t_end);
   logging::info(logging::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
                                 100.0 * frac, logging::hms(eta).c_str(), rate));
 }
@@ -411,6 +419,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
                       restarting ? s.step : -1);
   const long long start_step = s.step;
+  const double start_time = s.time;
   if (!restarting) {
     if (report_non_finite(sim, s)) return core::kExitNonFinite;
     history.record(s.step, s.time, 0.0, sim.diagnostics());
@@ -465,7 +474,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
       last_checkpoint = wall_now();
     }
     if (s.step == start_step + 1 || wall_now() - last_progress >= settings_.progress_interval) {
-      progress(s, wall_now() - wall_start, s.step - start_step);
+      progress(s, start_time, wall_now() - wall_start, s.step - start_step);
       last_progress = wall_now();
     }
   }
@@ -473,7 +482,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   if (report_non_finite(sim, s)) return core::kExitNonFinite;
   if (!snapshot_current) write_snapshot(sim, s);
   write_checkpoint(sim, s);
-  progress(s, wall_now() - wall_start, s.step - start_step);
+  progress(s, start_time, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
   logging::info(finished ? "finished" : "stopped at run.max_steps",
                 logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)", s.step - start_step, s.time, wall,

@@ -82,7 +82,7 @@ void check_theta_edges(const core::Deck& d, core::DeckCheck& check) {
 
 void GridSpec::declare(core::DeckSchema& s) {
   s.table("grid", "The (R, theta) disc grid (RBO24 sec. 2).");
-  s.integer("grid.nr").min(1).doc("Active cells in R (over all MPI ranks).");
+  s.integer("grid.nr").sets_state_size().min(1).doc("Active cells in R (over all MPI ranks).");
   s.real("grid.R_in").greater_than(0.0).unit("code length").doc("Inner radial edge.");
   s.real("grid.R_out").greater_than(0.0).unit("code length").doc("Outer radial edge (> R_in).");
   s.string("grid.r_spacing")
@@ -94,7 +94,7 @@ void GridSpec::declare(core::DeckSchema& s) {
       .min(0.0)
       .unit("code length")
       .doc("Explicit increasing radial edges (nr + 1 values) for r_spacing = \"edges\".");
-  s.integer("grid.ntheta").min(1).doc("Active cells in theta.");
+  s.integer("grid.ntheta").sets_state_size().min(1).doc("Active cells in theta.");
   s.real("grid.theta_min")
       .default_value(0.0)
       .min(-1.5)
@@ -219,7 +219,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   const int base = nr_global / size_, extra = nr_global % size_;
   nr = base + (rank_ < extra ? 1 : 0);
   i_offset = rank_ * base + std::min(rank_, extra);
-  if (nr < ng)
+  if (base < ng)  // the fewest cells of any rank: every rank refuses, none waits for the others
     throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ",
                                        size_, " ranks; increase grid.nr or use fewer ranks"));
   r_edges_global = spec.r_edges;

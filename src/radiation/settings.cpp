@@ -15,7 +15,11 @@ std::vector<double> log_wavelength_edges(double lo, double hi, int n) {
 namespace {
 
 void declare_grids(core::DeckSchema& s) {
-  s.integer("radiation.bands").default_value(20LL).min(1).doc("Number of FLD wavelength bands (RBO24 sec. 4.1).");
+  s.integer("radiation.bands")
+      .sets_state_size()
+      .default_value(20LL)
+      .min(1)
+      .doc("Number of FLD wavelength bands (RBO24 sec. 4.1).");
   s.integer("radiation.stellar_bins")
       .default_value(100LL)
       .min(1)

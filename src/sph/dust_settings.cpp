@@ -71,7 +71,11 @@ void DustSettings::declare(core::DeckSchema& s) {
       .default_value(std::string("improved"))
       .one_of({"improved", "original"})
       .doc("two-fluid drag update: LAB15 eq. 17-19 (improved) or eq. 4-6 (original, for comparison).");
-  s.integer("dust.species").default_value(1LL).min(1).doc("Number of dust species N (one View extent).");
+  s.integer("dust.species")
+      .sets_state_size()
+      .default_value(1LL)
+      .min(1)
+      .doc("Number of dust species N (one View extent).");
   s.string("dust.variable")
       .default_value(std::string("epsilon"))
       .one_of({"epsilon", "sqrt_rho_eps"})

@@ -14,19 +14,21 @@ and checksums of the files that must not change:
   * history.txt on a full disk (RLIMIT) and on /dev/full, the XDMF on /dev/full: exit 5 naming
     the file and the system error; the history keeps only complete rows;
   * a small tmpfs filling up (only where this process may mount one, else skipped);
-  * truncated, bit-flipped and NaN-holding checkpoints: --restart FILE refuses them (exit 2,
-    naming the defect), --restart latest skips them with a warning naming each and restarts
-    from the previous sound one; one of another problem is refused naming both problems;
-  * a restart whose deck changes physics or geometry (transport.vx, grid.x_max) or the
-    resolution (grid.nx) is refused (exit 2) naming the key and both values; restart-mutable
-    keys (run.t_end) may change; --force accepts a change and logs it.
+  * truncated, bit-flipped (in a state dataset, in the time attribute and in the stored deck)
+    and NaN-holding checkpoints: --restart FILE refuses them (exit 2, naming the defect),
+    --restart latest skips them with a warning naming each and restarts from the previous
+    sound one; one of another problem (disc_pulse) is refused naming both problems;
+  * a restart whose deck changes physics or geometry (transport.vx, grid.x_max) is refused
+    (exit 2) naming the key and both values; restart-mutable keys (run.t_end) may change;
+    --force accepts a change and logs it; a resolution change (grid.nx) is refused with and
+    without --force, naming the key and both values, not a dataset shape.
 Ends with 'N passed, M failed'.
 """
-import hashlib
 import os
 import resource
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 import time
@@ -34,7 +36,7 @@ import time
 import h5py
 import numpy as np
 
-from harness import Checks, run
+from harness import Checks, checksums, run
 
 BAD_INPUT, IO_ERROR = 2, 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 
@@ -46,16 +48,6 @@ common = ["grid.nx=16", "grid.ny=16", "output.checkpoint_every=4", "output.check
 checks = Checks()
 # Open MPI's singleton start-up keeps PMIx data in shared-memory files, which RLIMIT_FSIZE would break.
 os.environ["PMIX_MCA_gds"] = "hash"
-
-
-def checksums(directory, skip=()):
-    """{file name: sha256} of every regular file in directory except those in skip (not the /dev/full links)."""
-    sums = {}
-    for name in sorted(os.listdir(directory)):
-        if name not in skip and not os.path.islink(os.path.join(directory, name)):
-            with open(os.path.join(directory, name), "rb") as f:
-                sums[name] = hashlib.sha256(f.read()).hexdigest()
-    return sums
 
 
 def file_size_limit(limit):
@@ -216,11 +208,24 @@ def small_tmpfs():
         subprocess.run(["umount", d])
 
 
+def flip_bit_of(path, pattern):
+    """Flips the lowest bit of the first byte of the first occurrence of `pattern` in the file at path."""
+    with open(path, "rb") as f:
+        data = f.read()
+    offset = data.index(pattern)
+    with open(path, "r+b") as f:
+        f.seek(offset)
+        f.write(bytes([data[offset] ^ 1]))
+
+
 def damage(d):
-    """Three damaged copies of the newest checkpoint of d (truncated, one bit flipped, a NaN); returns them."""
+    """Damaged copies of the newest checkpoint of d (truncated, one bit flipped in a dataset, in the time (an
+    attribute: /@time or /state@tau) and in the stored deck (/@deck), a NaN); returns them."""
     newest = os.path.join(d, files(d, "checkpoint_")[-1])
+    with h5py.File(newest, "r") as f:
+        time = float(f.attrs["time"])
     out = {}
-    for kind in ("truncated", "bitflip", "nan"):
+    for kind in ("truncated", "bitflip", "attribute_time", "attribute_deck", "nan"):
         path = os.path.join(work, f"{kind}.h5")
         shutil.copy(newest, path)
         out[kind] = path
@@ -233,9 +238,20 @@ def damage(d):
         byte = f.read(1)[0]
         f.seek(offset + 8 * 37)
         f.write(bytes([byte ^ 1]))
+    flip_bit_of(out["attribute_time"], struct.pack("<d", time))
+    flip_bit_of(out["attribute_deck"], b"diffusivity = 0.01")
     with h5py.File(out["nan"], "r+") as f:
         f["/state/density"][3, 5] = np.nan
     return out
+
+
+def disc_pulse_checkpoint():
+    """A sound checkpoint of another problem (disc_pulse, one step)."""
+    d = os.path.join(work, "disc_pulse")
+    disc = os.path.join(os.path.dirname(exe), "disc_pulse")
+    run([disc, os.path.join(os.path.dirname(deck), "..", "disc_pulse", "disc_pulse.toml"), "grid.nr=16",
+         "grid.ntheta=16", "run.max_steps=1", f"output.dir={d}"], cwd=work)
+    return os.path.join(d, files(d, "checkpoint_")[-1])
 
 
 def damaged_checkpoints():
@@ -243,7 +259,9 @@ def damaged_checkpoints():
     d = fresh_run("damaged")
     ckpts = files(d, "checkpoint_")
     bad = damage(d)
+    attributes = "its attributes (time, step, run id, deck, ...) do not match their checksum"
     expected = {"truncated": "it cannot be read", "bitflip": "dataset /state/density does not match its checksum",
+                "attribute_time": attributes, "attribute_deck": attributes,
                 "nan": "dataset /state/density holds a non-finite value"}
     for kind, path in bad.items():
         case(f"restart FILE {kind}", [exe, "--restart", path, deck, *common, f"output.dir={d}"], BAD_INPUT,
@@ -254,10 +272,7 @@ def damaged_checkpoints():
         case(f"restart latest, newest {kind}", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
                                                 "run.max_steps=6"], 0,
              [f"skipping checkpoint '{newest}': {expected[kind]}", f"restarted from {previous} at step 4"])
-    foreign = os.path.join(work, "foreign.h5")
-    shutil.copy(previous, foreign)
-    with h5py.File(foreign, "r+") as f:
-        f.attrs["problem"] = np.bytes_("disc_pulse")
+    foreign = disc_pulse_checkpoint()
     case("restart FILE of another problem", [exe, "--restart", foreign, deck, *common, f"output.dir={d}"], BAD_INPUT,
          [f"checkpoint '{foreign}' belongs to problem 'disc_pulse', not 'gaussian_pulse'"], unchanged=d)
     for c in ckpts:
@@ -270,10 +285,14 @@ def changed_decks():
     """A restart may change restart-mutable keys only, unless forced; a resolution change is named as such."""
     d = fresh_run("decks")
     restart = [exe, "--restart", "latest", deck, *common, f"output.dir={d}"]
-    for key, new, old in (("transport.vx", "2.0", "1.0"), ("grid.x_max", "2.0", "1.0"), ("grid.nx", "32", "16")):
+    for key, new, old in (("transport.vx", "2.0", "1.0"), ("grid.x_max", "2.0", "1.0")):
         case(f"restart with {key} changed", [*restart, f"{key}={new}"], BAD_INPUT,
              ["in keys that may not change on restart (--force to accept)",
               f"{key} = {old} in the checkpoint, {new} now"], ["shape"], unchanged=d)
+    for force in ([], ["--force"]):
+        case(f"restart with grid.nx changed {' '.join(force)}", [*restart, "grid.nx=32", *force], BAD_INPUT,
+             ["the deck changes the size of the state stored in checkpoint", "which no restart can change, not even "
+              "with --force", "grid.nx = 16 in the checkpoint, 32 now"], ["shape", "HDF5"], unchanged=d)
     case("restart with run.t_end changed", [*restart, "run.t_end=0.3", "run.max_steps=8"], 0,
          ["restart changes run.t_end = 0.4 in the checkpoint, 0.3 now", "stopped at run.max_steps"])
     case("--force", [*restart, "transport.vx=2.0", "--force"], 0,

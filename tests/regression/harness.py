@@ -11,6 +11,32 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMPI_MCA_rmaps_base_oversubscribe": "1"}
 
 
+def checksums(directory, skip=()):
+    """{file name: sha256} of every regular file in directory except those in skip (and symbolic links)."""
+    import hashlib
+    sums = {}
+    for name in sorted(os.listdir(directory)):
+        path = os.path.join(directory, name)
+        if name not in skip and not os.path.islink(path):
+            with open(path, "rb") as f:
+                sums[name] = hashlib.sha256(f.read()).hexdigest()
+    return sums
+
+
+def run_within(cmd, time_limit, **kw):
+    """Runs cmd (list; stderr into stdout) in a session of its own; returns (exit code, output), or (None, output)
+    after killing the whole session (mpirun and its ranks) when it runs past time_limit seconds."""
+    import signal
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
+                         **kw)
+    try:
+        out = p.communicate(timeout=time_limit)[0]
+        return p.returncode, out
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        return None, p.communicate()[0] + f"\n(killed after {time_limit} s)"
+
+
 def run(cmd, expect=0, **kw):
     """Runs cmd (list); returns CompletedProcess; raises if the exit code differs from expect."""
     env = dict(os.environ, **MPI_ENV)

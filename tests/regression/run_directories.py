@@ -18,7 +18,6 @@ and checksums of the files that must not change:
     carry over, one given on the command line does.
 Ends with 'N passed, M failed'.
 """
-import hashlib
 import os
 import shutil
 import signal
@@ -28,7 +27,7 @@ import sys
 
 import h5py
 
-from harness import MPI_ENV, Checks, run
+from harness import MPI_ENV, Checks, checksums, run
 import mote
 
 BAD_INPUT, INTERRUPTED = 2, 4  # docs/quickstart.md, include/mote/core/exit_codes.hpp
@@ -39,15 +38,6 @@ deck = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "prob
 common = ["grid.nx=16", "grid.ny=16", "output.checkpoint_every=4", "output.checkpoints_kept=10",
           "run.progress_interval=0"]
 checks = Checks()
-
-
-def checksums(directory):
-    """{file name: sha256} of every file in directory."""
-    sums = {}
-    for name in sorted(os.listdir(directory)):
-        with open(os.path.join(directory, name), "rb") as f:
-            sums[name] = hashlib.sha256(f.read()).hexdigest()
-    return sums
 
 
 def case(name, cmd, code, expected, unchanged=(), cwd=None):

@@ -329,3 +329,11 @@ TEST_F(RunLoopTest, UsedDirectoryNeedsOverwriteAndRestartNeedsOwnRun) {
   EXPECT_NE(read_text(fs::path(dir_) / "run_id"), id);
   fs::remove_all(dir_ + "_b");
 }
+
+// Issue 22, item 9: after a restart at half the run, 10 s for the next tenth leave 40 s, not 6.7 s.
+TEST(RemainingWallTime, CountsOnlyTheProgressOfThisProcess) {
+  EXPECT_DOUBLE_EQ(io::remaining_wall_time(10.0, 0.5, 0.6, 1.0), 40.0);
+  EXPECT_DOUBLE_EQ(io::remaining_wall_time(10.0, 0.0, 0.25, 1.0), 30.0);
+  EXPECT_TRUE(std::isnan(io::remaining_wall_time(10.0, 0.5, 0.5, 1.0)));
+  EXPECT_TRUE(std::isnan(io::remaining_wall_time(0.0, 0.0, 0.1, 1.0)));
+}

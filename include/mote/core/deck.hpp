@@ -26,6 +26,7 @@ struct KeyChange {
   std::string key;
   std::string before, after;  // TOML text of the values
   bool restart_mutable;       // declared KeySpec::restart_mutable()
+  bool state_size;            // declared KeySpec::sets_state_size()
 };
 
 class Deck {

@@ -48,6 +48,9 @@ class KeySpec {
   /// The key may differ between a checkpoint's deck and the deck of its restart
   /// (stop conditions, output cadence, progress); any other change is refused.
   KeySpec& restart_mutable();
+  /// The key sets the size of the stored state (a resolution, a count of particles, species or
+  /// bands): a restart can never change it, not even with --force.
+  KeySpec& sets_state_size();
 
   const std::string& table() const { return table_; }
   const std::string& key() const { return key_; }
@@ -59,6 +62,7 @@ class KeySpec {
   bool required() const { return !default_.has_value(); }
   const std::vector<std::string>& choices() const { return choices_; }
   bool is_restart_mutable() const { return restart_mutable_; }
+  bool is_state_size() const { return state_size_; }
 
   /// Empty if the value is allowed; otherwise what was expected ("> 0", "one of ...").
   std::string range_violation(const Value& value) const;
@@ -78,6 +82,7 @@ class KeySpec {
   bool non_finite_allowed_ = false;
   bool int64_ = false;
   bool restart_mutable_ = false;
+  bool state_size_ = false;
 };
 
 struct TableSpec {

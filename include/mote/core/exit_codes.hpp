@@ -38,6 +38,13 @@ class IOError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The I/O error of another rank, which reports it: this rank stops with the same exit code (5)
+/// without repeating the message.
+class PeerIOError : public IOError {
+ public:
+  using IOError::IOError;
+};
+
 /// The exit code of a run ended by `error`.
 ExitCode exit_code_of(const std::exception& error);
 

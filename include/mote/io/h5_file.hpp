@@ -1,18 +1,24 @@
 // RAII wrapper around an HDF5 file, opened collectively on every rank of a
-// Comm. Under MPI with a parallel HDF5 the file uses the MPI-IO driver and
-// every dataset write or read is collective: each rank passes its own block
-// (offset + count within the global shape). Attributes and whole-array
-// datasets must be written with identical values on every rank.
+// Comm; each rank passes its own block (offset + count within the global
+// shape) of a distributed dataset. Attributes and whole-array datasets must
+// be written with identical values on every rank.
+// A new file (Mode::Create) is built in memory on rank 0 (HDF5's core
+// driver): the other ranks send their blocks of each dataset to rank 0, and
+// close() writes the image with checked POSIX calls on rank 0 and tells every
+// rank the outcome. A full disk is thus an ordinary error that HDF5 never
+// sees and that stops every rank together: HDF5 cannot close a file whose
+// flush failed, and parallel HDF5 1.10 deadlocks inside H5Fclose when a write
+// failed on one rank. Rank 0 holds the whole file image while it is built.
+// A file is read (Mode::Read) with the MPI-IO driver on several ranks, each
+// dataset read collectively.
 // Every failed HDF5 call is a core::IOError naming the file, the operation
 // and the system error; HDF5's own error stack is not printed but appended to
-// hdf5_errors.log beside the file. On one rank a new file is built in memory
-// (HDF5's core driver) and written by close() with checked POSIX calls, so
-// that a full disk is an ordinary error that HDF5 never sees (HDF5 cannot
-// close a file whose flush failed); on several ranks the MPI-IO driver writes
-// the file directly. Every dataset under "/state" (checkpoint
+// hdf5_errors.log beside the file. Every dataset under "/state" (checkpoint
 // state) carries an attribute "checksum": the sum over its elements of a
 // 64-bit hash of (global element index, element bits), which does not depend
 // on how the dataset was split over ranks; check_state_dataset() verifies it.
+// A checkpoint also carries a checksum of all its attributes (time, step, run
+// id, deck, ...; write_attributes_checksum(), check_attributes()).
 #pragma once
 
 #include <hdf5.h>
@@ -41,8 +47,8 @@ class H5File {
   /// Closes the file if close() was not called, writing a new one unless an exception is
   /// propagating (then nothing is written); write errors can only be logged here.
   ~H5File();
-  /// Writes (a new file) and closes the file, collectively; a failure is a core::IOError
-  /// and leaves no file at path() on one rank.
+  /// Writes (a new file, on rank 0) and closes the file, collectively; a failure is a core::IOError
+  /// on rank 0 and a core::PeerIOError on the others, and leaves no file at path().
   void close();
   H5File(const H5File&) = delete;
   H5File& operator=(const H5File&) = delete;
@@ -64,6 +70,11 @@ class H5File {
   /// What is wrong with the state dataset `name` (read whole on every rank):
   /// no or a different checksum, a non-finite real; empty if nothing.
   std::string check_state_dataset(const std::string& name) const;
+  /// Stores a checksum of every attribute in the file (object, name, type and bytes) as the root
+  /// attribute "attributes_checksum"; call it after the last attribute is written.
+  void write_attributes_checksum();
+  /// What is wrong with the attributes: no checksum of them or a different one; empty if nothing.
+  std::string check_attributes() const;
 
   /// Attributes on a group or dataset (object "/" is the file root).
   void write_attribute(const std::string& object, const std::string& name, double value);
@@ -77,16 +88,37 @@ class H5File {
   const std::string& path() const { return path_; }
 
  private:
+  /// Mode::Create on rank 0: an empty file in memory; a failure is a core::IOError on every rank.
+  void create_image();
+  void open_for_reading();
+  /// Throws on every rank where rank 0 failed with `root_error` (core::PeerIOError on the others).
+  void agree_with_root(const std::string& root_error) const;
+  /// Only rank 0 holds a file being built; on the other ranks writes go to rank 0 or are skipped.
+  bool holds_file() const { return !building_ || comm_.is_root(); }
   void write_impl(const std::string& name, const Block& block, hid_t type, const void* data);
+  /// Writes `block` of the dataset `dset` (name `name`) from `data` (rank 0 of a file being built).
+  void write_block(hid_t dset, const std::string& name, hid_t type, const Block& block, const void* data) const;
+  /// Receives the block of rank `source` and writes it (rank 0 of a file being built).
+  void write_received_block(hid_t dset, const std::string& name, hid_t type, const std::vector<hsize_t>& global_dims,
+                            int source) const;
   void read_impl(const std::string& name, const Block& block, hid_t type, void* data) const;
   hid_t transfer_plist() const;
+  /// Checks a collective call (open, dataset write or read, close) on every rank: where it failed on
+  /// any rank, the first failing rank throws its core::IOError and every other rank a core::PeerIOError,
+  /// so that all ranks stop together (one rank alone would leave the others waiting in the next call).
+  void check_on_every_rank(herr_t status, const std::string& what) const;
   void write_checksum(const std::string& name, const Block& block, size_t element_size, const void* data);
+  /// "/" and the path of every group and dataset, in name order.
+  std::vector<std::string> objects() const;
+  /// Hash of every attribute but "attributes_checksum" (write_attributes_checksum()).
+  std::uint64_t attributes_hash() const;
   /// Writes the in-memory image of `file` to path_ (write_bytes).
   void write_image_of(hid_t file) const;
   std::string path_;
   core::Comm comm_;
   hid_t file_ = -1;
-  bool in_memory_ = false;  // created with the core driver: close() writes the image
+  bool building_ = false;  // Mode::Create: built in memory on rank 0, written by close()
+  bool closed_ = false;
   int exceptions_at_open_ = 0;
 };
 

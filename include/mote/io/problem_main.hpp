@@ -37,9 +37,10 @@ struct ProblemDefinition {
   std::string summary;
   /// Declares the problem's own deck tables and keys ([run] and [output] are declared for it).
   std::function<void(core::DeckSchema&)> declare;
-  /// Builds the initial state. May throw core::DeckError for input that only the
-  /// set-up can judge (e.g. cells per MPI rank), reported like any deck error
-  /// before output is created; rules on the deck alone go into declare() (DeckSchema::rule)
+  /// Builds the initial state. May throw core::DeckError (or std::invalid_argument, from
+  /// the modules it builds) for input that only the set-up can judge (e.g. cells per MPI
+  /// rank), reported like any deck error (exit 2) before output is created; --check does
+  /// not run the set-up, so rules on the deck alone go into declare() (DeckSchema::rule)
   /// so that --check finds them too.
   std::function<std::unique_ptr<Simulation>(const ProblemContext&)> create;
 };

@@ -1,6 +1,7 @@
 // Choosing and vetting the checkpoint a run restarts from (issue 22): a
 // checkpoint is used only if it opens, every state dataset matches its
-// checksum (h5_file.hpp) and holds finite values; `--restart latest` falls
+// checksum (h5_file.hpp) and holds finite values, and the attributes match
+// their checksum; `--restart latest` falls
 // back past defective checkpoints to the newest sound one. The deck of the
 // restart may differ from the deck stored in the checkpoint only in keys
 // declared KeySpec::restart_mutable() (stop conditions, output cadence,
@@ -15,7 +16,8 @@
 namespace mote::io {
 
 /// What makes checkpoint `path` unusable (unreadable, a state dataset that fails its checksum or
-/// holds a non-finite value); empty if it is sound. Collective: every rank reads the whole state.
+/// holds a non-finite value, attributes that fail theirs); empty if it is sound. Collective: every rank reads the whole
+/// state.
 std::string checkpoint_defect(const std::string& path, const core::Comm& comm);
 
 /// `path` if it is sound, else a core::InputError naming it and the defect.
@@ -29,9 +31,10 @@ std::string latest_sound_checkpoint(const std::string& dir, const core::Comm& co
 std::string deck_stored_in(const std::string& checkpoint, const core::Comm& comm);
 
 /// Refuses a checkpoint of another problem (core::InputError), then compares `deck` with the
-/// deck stored in `checkpoint` (parsed with the same schema): changes of restart-mutable keys
-/// are logged; any other change is a core::DeckError naming each key with both values, or with
-/// `force` a warning per change.
+/// deck stored in `checkpoint` (parsed with the same schema): a change of a key that sets the
+/// state's size (KeySpec::sets_state_size()) is a core::DeckError even with `force`; changes of
+/// restart-mutable keys are logged; any other change is a core::DeckError naming each key with
+/// both values, or with `force` a warning per change.
 void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, const core::DeckSchema& schema,
                         const std::string& problem, bool force, const core::Comm& comm);
 

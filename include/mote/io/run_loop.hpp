@@ -51,6 +51,10 @@ struct RunSettings {
   static RunSettings from_deck(const core::Deck& deck);
 };
 
+/// Wall seconds left to reach `t_end` at the pace of this process: `wall` seconds took the run
+/// from `time_at_start` (0, or a restart's time) to `time`; NaN before any progress.
+double remaining_wall_time(double wall, double time_at_start, double time, double t_end);
+
 class RunLoop {
  public:
   RunLoop(RunSettings settings, std::string problem, const core::Deck& deck, units::UnitSystem units,
@@ -91,7 +95,8 @@ class RunLoop {
   bool time_step_usable(const Simulation& sim, const State& s, double dt) const;
   void write_run_attributes(H5File& file, const State& s) const;
   bool report_non_finite(const Simulation& sim, const State& s) const;
-  void progress(const State& s, double wall, long long steps_done) const;
+  /// A progress line; `time_at_start` is the time this process started from (a restart's).
+  void progress(const State& s, double time_at_start, double wall, long long steps_done) const;
 
   RunSettings settings_;
   std::string problem_;
