@@ -90,7 +90,7 @@ struct DragPair {
     for (int d = 0; d < Dim; ++d) {
       const Real vdg = v(i, d) - v(k, d);
       const Real adg = pk(i, kAcc + d) - pk(k, kAcc + d);  // non-drag a_DG over the step
-      sr += (xi * vdg - lambda * adg) * rhat[d];            // eq. 21
+      sr += (xi * vdg - lambda * adg) * rhat[d];           // eq. 21
       ve += vdg * e[d];
     }
     return true;
