@@ -5,19 +5,25 @@
 // A new file (Mode::Create) is built in memory on rank 0 (HDF5's core
 // driver): the other ranks send their blocks of each dataset to rank 0, and
 // close() writes the image with checked POSIX calls on rank 0 and tells every
-// rank the outcome. A failure while rank 0 builds the image (an HDF5 call, or
-// memory exhausted) is kept, the rest of the build skipped (rank 0 still takes
-// the blocks sent to it), and told to every rank before the next distributed
-// dataset is sent and at close(), so that all ranks stop together. A full disk is thus an ordinary error that HDF5
-// never sees and that stops every rank together: HDF5 cannot close a file whose flush failed, and parallel HDF5 1.10
-// deadlocks inside H5Fclose when a write failed on one rank. Rank 0 holds the whole file image while it is built. A
-// file is read (Mode::Read) with the MPI-IO driver on several ranks, each dataset read collectively; opening and
-// reading datasets fail on every rank together when they fail on one (rank 0 reports which rank and why). Every failed
-// HDF5 call is a core::IOError naming the file, the operation and the system error; HDF5's own error stack is not
-// printed but appended to hdf5_errors.log beside the file. Every dataset under "/state" (checkpoint state) carries an
-// attribute "checksum": the sum over its elements of a 64-bit hash of (global element index, element bits), which does
-// not depend on how the dataset was split over ranks; check_state_dataset() verifies it. A checkpoint also carries a
-// checksum of all its attributes (time, step, run id, deck, ...; write_attributes_checksum(), check_attributes()).
+// rank the outcome. A full disk is thus an ordinary error that HDF5 never
+// sees and that stops every rank together: HDF5 cannot close a file whose
+// flush failed, and parallel HDF5 1.10 deadlocks inside H5Fclose when a write
+// failed on one rank. Rank 0 holds the whole file image while it is built.
+// A failure while rank 0 builds it (an HDF5 call, or memory exhausted) is
+// kept and the rest of the build skipped (rank 0 still takes the blocks sent
+// to it); every rank learns of it before the next distributed dataset is
+// sent, or at close(), and all stop together.
+// A file is read (Mode::Read) with the MPI-IO driver on several ranks, each
+// dataset read collectively; opening the file and reading a dataset fail on
+// every rank when they fail on one (rank 0 reports which rank and why).
+// Every failed HDF5 call is a core::IOError naming the file, the operation
+// and the system error; HDF5's own error stack is not printed but appended to
+// hdf5_errors.log beside the file. Every dataset under "/state" (checkpoint
+// state) carries an attribute "checksum": the sum over its elements of a
+// 64-bit hash of (global element index, element bits), which does not depend
+// on how the dataset was split over ranks; check_state_dataset() verifies it.
+// A checkpoint also carries a checksum of all its attributes (time, step, run
+// id, deck, ...; write_attributes_checksum(), check_attributes()).
 #pragma once
 
 #include <hdf5.h>
