@@ -10,8 +10,10 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <regex>
 #include <stdexcept>
+#include <utility>
 
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
@@ -63,13 +65,24 @@ std::string log_error_stack(const std::string& path, const std::string& what, co
   return log;
 }
 
-/// Throws the core::IOError of a failed HDF5 call `what` on file `path`.
-[[noreturn]] void fail(const std::string& what, const std::string& path) {
+/// The message of a failed HDF5 call `what` on file `path`; logs HDF5's error stack.
+std::string failure(const std::string& what, const std::string& path) {
   const ErrorStack stack = take_error_stack();
   const std::string reason = reason_of(stack);
   const std::string log = log_error_stack(path, what, stack.text);
-  throw core::IOError("HDF5 could not " + what + " in '" + path + "'" + (reason.empty() ? "" : ": " + reason) +
-                      " (HDF5 error stack in " + log + ")");
+  return "HDF5 could not " + what + " in '" + path + "'" + (reason.empty() ? "" : ": " + reason) +
+         " (HDF5 error stack in " + log + ")";
+}
+
+/// Throws the core::IOError of a failed HDF5 call `what` on file `path`.
+[[noreturn]] void fail(const std::string& what, const std::string& path) { throw core::IOError(failure(what, path)); }
+
+/// Why `path` cannot be opened for reading by this process (the system error), empty if it can.
+std::string open_error(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return "cannot open '" + path + "': " + std::strerror(errno);
+  ::close(fd);
+  return {};
 }
 
 void check(herr_t status, const std::string& what, const std::string& path) {
@@ -141,6 +154,21 @@ std::string shape_text(const std::vector<hsize_t>& dims) {
 
 /// Message tag of the blocks that ranks send to rank 0 for a file being built.
 constexpr int kBlockTag = 7301;
+/// Message tag of an error that a rank sends to rank 0 (first_error()).
+constexpr int kErrorTag = 7302;
+
+/// Collective: the lowest rank whose `error` is not empty (-1 if none is) and, on rank 0 and on that rank,
+/// its error.
+std::pair<int, std::string> first_error(const std::string& error, const core::Comm& comm) {
+  const int first = comm.min(error.empty() ? comm.size() : comm.rank());
+  if (first == comm.size()) return {-1, ""};
+  if (first != 0 && comm.rank() == first) comm.send_bytes(error.data(), error.size(), 0, kErrorTag);
+  if (first != 0 && comm.is_root()) {
+    const std::vector<unsigned char> bytes = comm.receive_bytes(first, kErrorTag);
+    return {first, std::string(bytes.begin(), bytes.end())};
+  }
+  return {first, comm.rank() == first ? error : ""};
+}
 
 /// A rank's block as one message to rank 0: its offset, its count, then its elements.
 std::vector<unsigned char> pack_block(const Block& block, size_t element_size, const void* data) {
@@ -247,13 +275,15 @@ void H5File::create_image() {
 }
 
 void H5File::open_for_reading() {
+  agree_on_error(open_error(path_));  // MPI-IO's collective open does not return where one rank cannot open
   Handle fapl(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a file access list", path_), H5Pclose);
 #if defined(MOTE_HAVE_MPI) && defined(MOTE_HDF5_PARALLEL)
   if (comm_.size() > 1) check(H5Pset_fapl_mpio(fapl, comm_.raw(), MPI_INFO_NULL), "set the MPI-IO driver", path_);
 #else
   if (comm_.size() > 1) throw std::logic_error("reading an H5File on several ranks needs MPI and a parallel HDF5");
 #endif
-  file_ = check_id(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl), "open the file", path_);
+  file_ = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl);
+  check_on_every_rank(file_ < 0 ? -1 : 0, "open the file");
 }
 
 void H5File::agree_with_root(const std::string& root_error) const {
@@ -262,9 +292,33 @@ void H5File::agree_with_root(const std::string& root_error) const {
   throw core::PeerIOError("rank 0 could not write '" + path_ + "'");
 }
 
+void H5File::agree_on_error(const std::string& error) const {
+  const auto [rank, text] = first_error(error, comm_);
+  if (rank < 0) return;
+  if (comm_.is_root()) throw core::IOError(rank == 0 ? text : "on rank " + std::to_string(rank) + ": " + text);
+  throw core::PeerIOError("rank " + std::to_string(rank) + " could not read '" + path_ + "'");
+}
+
+void H5File::check_on_every_rank(herr_t status, const std::string& what) const {
+  agree_on_error(status < 0 ? failure(what, path_) : std::string());
+}
+
+template <class Step>
+void H5File::build(Step&& step) {
+  if (!building_) return step();
+  if (!build_error_.empty()) return;
+  try {
+    step();
+  } catch (const core::IOError& e) {
+    build_error_ = e.what();
+  } catch (const std::bad_alloc&) {
+    build_error_ = "out of memory while building '" + path_ + "' on rank 0, which holds the whole file until written";
+  }
+}
+
 H5File::~H5File() {
   if (file_ < 0) return;
-  if (building_ && std::uncaught_exceptions() == exceptions_at_open_) {
+  if (building_ && build_error_.empty() && std::uncaught_exceptions() == exceptions_at_open_) {
     try {
       write_image_of(file_);
     } catch (const std::exception& e) {
@@ -281,16 +335,11 @@ void H5File::close() {
   const hid_t file = file_;
   file_ = -1;
   if (!building_) return check(H5Fclose(file), "close the file", path_);
-  std::string error;
   if (file >= 0) {
-    try {
-      write_image_of(file);
-    } catch (const core::IOError& e) {
-      error = e.what();
-    }
+    build([&] { write_image_of(file); });
     H5Fclose(file);
   }
-  agree_with_root(error);
+  agree_with_root(build_error_);
 }
 
 void H5File::write_image_of(hid_t file) const {
@@ -304,19 +353,20 @@ void H5File::write_image_of(hid_t file) const {
 
 void H5File::create_group(const std::string& path) {
   if (!holds_file()) return;
-  std::string partial;
-  size_t start = 1;
-  while (start <= path.size()) {
-    const size_t end = path.find('/', start);
-    partial = path.substr(0, end == std::string::npos ? path.size() : end);
-    if (!partial.empty() && partial != "/" && !exists(partial)) {
-      Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                        "create group " + partial, path_),
-               H5Gclose);
+  build([&] {
+    size_t start = 1;
+    while (start <= path.size()) {
+      const size_t end = path.find('/', start);
+      const std::string partial = path.substr(0, end == std::string::npos ? path.size() : end);
+      if (!partial.empty() && partial != "/" && !exists(partial)) {
+        Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                          "create group " + partial, path_),
+                 H5Gclose);
+      }
+      if (end == std::string::npos) break;
+      start = end + 1;
     }
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+  });
 }
 
 bool H5File::exists(const std::string& path) const {
@@ -345,6 +395,7 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
   // A "whole" block is written by rank 0 alone; the other ranks send their blocks to rank 0.
   const bool whole = block.count == block.global_dims;
   const bool writes = !whole || comm_.is_root();
+  if (building_ && !whole) agree_with_root(build_error_);  // no block is sent to a rank 0 that has failed
   if (!holds_file() && !whole) {
     const std::vector<unsigned char> message = pack_block(block, element_size, data);
     comm_.send_bytes(message.data(), message.size(), 0, kBlockTag);
@@ -352,15 +403,16 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
   if (holds_file()) {
     const auto slash = name.rfind('/');
     if (slash != std::string::npos && slash > 0) create_group(name.substr(0, slash));
-    Handle filespace(
-        check_id(H5Screate_simple(static_cast<int>(block.global_dims.size()), block.global_dims.data(), nullptr),
-                 "create the dataspace of " + name, path_),
-        H5Sclose);
-    Handle dset(check_id(H5Dcreate2(file_, name.c_str(), type, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                         "create dataset " + name, path_),
-                H5Dclose);
-    write_block(dset, name, type, block, data);
-    for (int r = 1; r < comm_.size() && !whole; ++r) write_received_block(dset, name, type, block.global_dims, r);
+    hid_t dset = -1;
+    build([&] {
+      dset = create_dataset(name, type, block.global_dims);
+      write_block(dset, name, type, block, data);
+    });
+    const Handle closer(dset, H5Dclose);
+    for (int r = 1; r < comm_.size() && !whole; ++r) {
+      const std::vector<unsigned char> message = comm_.receive_bytes(r, kBlockTag);  // taken even after a failure
+      build([&] { write_received_block(dset, name, type, block.global_dims, message); });
+    }
   }
   if (is_state_dataset(name)) write_checksum(name, block, element_size, writes ? data : nullptr);
 }
@@ -376,9 +428,17 @@ void H5File::write_block(hid_t dset, const std::string& name, hid_t type, const 
   check(H5Dwrite(dset, type, memspace, filespace, H5P_DEFAULT, data), "write dataset " + name, path_);
 }
 
+hid_t H5File::create_dataset(const std::string& name, hid_t type, const std::vector<hsize_t>& global_dims) {
+  Handle filespace(check_id(H5Screate_simple(static_cast<int>(global_dims.size()), global_dims.data(), nullptr),
+                            "create the dataspace of " + name, path_),
+                   H5Sclose);
+  return check_id(H5Dcreate2(file_, name.c_str(), type, filespace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                  "create dataset " + name, path_);
+}
+
 void H5File::write_received_block(hid_t dset, const std::string& name, hid_t type,
-                                  const std::vector<hsize_t>& global_dims, int source) const {
-  const std::vector<unsigned char> message = comm_.receive_bytes(source, kBlockTag);
+                                  const std::vector<hsize_t>& global_dims,
+                                  const std::vector<unsigned char>& message) const {
   const size_t half_header = global_dims.size() * sizeof(hsize_t);
   Block block;
   block.global_dims = global_dims;
@@ -414,7 +474,7 @@ void H5File::read_impl(const std::string& name, const Block& block, hid_t type, 
       check_id(H5Screate_simple(rank, block.count.data(), nullptr), "create the memory space of " + name, path_),
       H5Sclose);
   Handle dxpl(transfer_plist(), H5Pclose);
-  check(H5Dread(dset, type, memspace, filespace, dxpl, data), "read dataset " + name, path_);
+  check_on_every_rank(H5Dread(dset, type, memspace, filespace, dxpl, data), "read dataset " + name);
 }
 
 std::vector<hsize_t> H5File::dims(const std::string& name) const {
@@ -468,7 +528,7 @@ std::uint64_t H5File::attributes_hash() const {
 
 void H5File::write_attributes_checksum() {
   if (!holds_file()) return;
-  write_attribute("/", kAttributesChecksum, static_cast<std::int64_t>(attributes_hash()));
+  build([&] { write_attribute("/", kAttributesChecksum, static_cast<std::int64_t>(attributes_hash())); });
 }
 
 std::string H5File::check_attributes() const {
@@ -539,25 +599,31 @@ Handle open_attr(hid_t file, const std::string& path, const std::string& object,
 
 void H5File::write_attribute(const std::string& object, const std::string& name, double value) {
   if (!holds_file()) return;
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  write_attr(file_, path_, object, name, H5T_NATIVE_DOUBLE, space, &value);
+  build([&] {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    write_attr(file_, path_, object, name, H5T_NATIVE_DOUBLE, space, &value);
+  });
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, std::int64_t value) {
   if (!holds_file()) return;
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  write_attr(file_, path_, object, name, H5T_NATIVE_INT64, space, &value);
+  build([&] {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    write_attr(file_, path_, object, name, H5T_NATIVE_INT64, space, &value);
+  });
 }
 
 void H5File::write_attribute(const std::string& object, const std::string& name, const std::string& value) {
   if (!holds_file()) return;
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type, value.empty() ? 1 : value.size());
-  H5Tset_strpad(type, H5T_STR_NULLPAD);
-  H5Tset_cset(type, H5T_CSET_UTF8);
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  const std::string padded = value.empty() ? std::string(1, '\0') : value;
-  write_attr(file_, path_, object, name, type, space, padded.data());
+  build([&] {
+    Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(type, value.empty() ? 1 : value.size());
+    H5Tset_strpad(type, H5T_STR_NULLPAD);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    const std::string padded = value.empty() ? std::string(1, '\0') : value;
+    write_attr(file_, path_, object, name, type, space, padded.data());
+  });
 }
 
 double H5File::read_attribute_real(const std::string& object, const std::string& name) const {

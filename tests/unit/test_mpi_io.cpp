@@ -1,10 +1,12 @@
-// On 2 ranks: communicator reductions, halo-style exchange, and collective
-// parallel-HDF5 block writes read back by every rank.
+// On 2 ranks: communicator reductions, halo-style exchange, collective
+// parallel-HDF5 block writes read back by every rank, and failures of rank 0's
+// in-memory build of a file that stop every rank together (issue 22).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "mote/core/comm.hpp"
+#include "mote/core/exit_codes.hpp"
 #include "mote/io/h5_file.hpp"
 
 using mote::core::Comm;
@@ -53,4 +55,58 @@ TEST(MpiHdf5, CollectiveBlocksRoundTrip) {
   f.read("/fields/a", Block::whole({5, 3}), all.data());
   for (int k = 0; k < 15; ++k) EXPECT_EQ(all[k], 100.0 * k + 0.25);
   EXPECT_EQ(f.read_attribute_int("/", "ranks"), 2);
+}
+
+namespace {
+
+/// What `write` (HDF5 calls that fail on rank 0 alone, then a distributed dataset and close()) throws on this rank:
+/// "root" (a core::IOError on rank 0), "peer" (a core::PeerIOError elsewhere) or "none".
+template <class Write>
+std::string build_failure(const std::string& path, const Comm& comm, Write&& write) {
+  std::vector<double> mine(4, double(comm.rank()));
+  Block b;
+  b.global_dims = {8};
+  b.offset = {hsize_t(4 * comm.rank())};
+  b.count = {4};
+  try {
+    H5File f(path, H5File::Mode::Create, comm);
+    write(f, b, mine.data());
+    f.write("/after", b, mine.data());
+    f.close();
+  } catch (const mote::core::PeerIOError&) {
+    return comm.is_root() ? "wrong" : "peer";
+  } catch (const mote::core::IOError& e) {
+    return comm.is_root() && std::string(e.what()).find("HDF5 could not") != std::string::npos ? "root" : "wrong";
+  }
+  return "none";
+}
+
+}  // namespace
+
+// An attribute of a missing object fails on rank 0 alone (the other ranks hold no file): every rank stops at the
+// next distributed dataset instead of rank 1 waiting in close(), and no file is written.
+TEST(MpiHdf5, RootAttributeFailureStopsEveryRank) {
+  const auto comm = Comm::world();
+  const std::string path = (std::filesystem::temp_directory_path() / "mote_mpi_root_attribute.h5").string();
+  std::filesystem::remove(path);
+  const std::string thrown = build_failure(
+      path, comm, [](H5File& f, const Block&, const double*) { f.write_attribute("/missing", "a", 1.0); });
+  EXPECT_EQ(thrown, comm.is_root() ? "root" : "peer");
+  EXPECT_EQ(comm.min(thrown == (comm.is_root() ? "root" : "peer") ? 1 : 0), 1);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// A dataset that rank 0 cannot create (its name is taken) while rank 1 sends its block: rank 0 still takes the
+// block, and every rank stops together.
+TEST(MpiHdf5, RootDatasetFailureStopsEveryRank) {
+  const auto comm = Comm::world();
+  const std::string path = (std::filesystem::temp_directory_path() / "mote_mpi_root_dataset.h5").string();
+  std::filesystem::remove(path);
+  const std::string thrown = build_failure(path, comm, [](H5File& f, const Block& b, const double* data) {
+    f.write("/twice", b, data);
+    f.write("/twice", b, data);
+  });
+  EXPECT_EQ(thrown, comm.is_root() ? "root" : "peer");
+  EXPECT_EQ(comm.min(thrown == (comm.is_root() ? "root" : "peer") ? 1 : 0), 1);
+  EXPECT_FALSE(std::filesystem::exists(path));
 }

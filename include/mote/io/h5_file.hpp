@@ -9,8 +9,13 @@
 // sees and that stops every rank together: HDF5 cannot close a file whose
 // flush failed, and parallel HDF5 1.10 deadlocks inside H5Fclose when a write
 // failed on one rank. Rank 0 holds the whole file image while it is built.
+// A failure while rank 0 builds it (an HDF5 call, or memory exhausted) is
+// kept and the rest of the build skipped (rank 0 still takes the blocks sent
+// to it); every rank learns of it before the next distributed dataset is
+// sent, or at close(), and all stop together.
 // A file is read (Mode::Read) with the MPI-IO driver on several ranks, each
-// dataset read collectively.
+// dataset read collectively; opening the file and reading a dataset fail on
+// every rank when they fail on one (rank 0 reports which rank and why).
 // Every failed HDF5 call is a core::IOError naming the file, the operation
 // and the system error; HDF5's own error stack is not printed but appended to
 // hdf5_errors.log beside the file. Every dataset under "/state" (checkpoint
@@ -93,19 +98,27 @@ class H5File {
   void open_for_reading();
   /// Throws on every rank where rank 0 failed with `root_error` (core::PeerIOError on the others).
   void agree_with_root(const std::string& root_error) const;
+  /// Throws on every rank where any rank's `error` is not empty: rank 0 a core::IOError with the first
+  /// failing rank's error, the others a core::PeerIOError.
+  void agree_on_error(const std::string& error) const;
+  /// Rank 0 of a file being built: runs `step` unless an earlier step failed; keeps the first failure (a
+  /// core::IOError or memory exhausted) in build_error_ for the next agreement with the other ranks.
+  template <class Step>
+  void build(Step&& step);
   /// Only rank 0 holds a file being built; on the other ranks writes go to rank 0 or are skipped.
   bool holds_file() const { return !building_ || comm_.is_root(); }
   void write_impl(const std::string& name, const Block& block, hid_t type, const void* data);
   /// Writes `block` of the dataset `dset` (name `name`) from `data` (rank 0 of a file being built).
   void write_block(hid_t dset, const std::string& name, hid_t type, const Block& block, const void* data) const;
-  /// Receives the block of rank `source` and writes it (rank 0 of a file being built).
+  /// Creates the dataset `name` of `global_dims` (rank 0 of a file being built).
+  hid_t create_dataset(const std::string& name, hid_t type, const std::vector<hsize_t>& global_dims);
+  /// Writes the block of another rank received as `message` (rank 0 of a file being built).
   void write_received_block(hid_t dset, const std::string& name, hid_t type, const std::vector<hsize_t>& global_dims,
-                            int source) const;
+                            const std::vector<unsigned char>& message) const;
   void read_impl(const std::string& name, const Block& block, hid_t type, void* data) const;
   hid_t transfer_plist() const;
-  /// Checks a collective call (open, dataset write or read, close) on every rank: where it failed on
-  /// any rank, the first failing rank throws its core::IOError and every other rank a core::PeerIOError,
-  /// so that all ranks stop together (one rank alone would leave the others waiting in the next call).
+  /// Checks a collective call (open, dataset read) on every rank (agree_on_error()), so that all ranks stop
+  /// together (one rank alone would leave the others waiting in the next call).
   void check_on_every_rank(herr_t status, const std::string& what) const;
   void write_checksum(const std::string& name, const Block& block, size_t element_size, const void* data);
   /// "/" and the path of every group and dataset, in name order.
@@ -119,6 +132,7 @@ class H5File {
   hid_t file_ = -1;
   bool building_ = false;  // Mode::Create: built in memory on rank 0, written by close()
   bool closed_ = false;
+  std::string build_error_;  // rank 0 of a file being built: the first failure
   int exceptions_at_open_ = 0;
 };
 
