@@ -36,7 +36,7 @@ import time
 import h5py
 import numpy as np
 
-from harness import Checks, checksums, run
+from harness import Checks, checksums, files, run, unreadable_hdf5
 
 BAD_INPUT, IO_ERROR = 2, 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 
@@ -84,10 +84,6 @@ def fresh_run(name, *extra):
     d = os.path.join(work, name)
     run([exe, deck, *common, f"output.dir={d}", "run.max_steps=6", *extra], cwd=work)
     return d
-
-
-def files(d, prefix, ext=".h5"):
-    return sorted(f for f in os.listdir(d) if f.startswith(prefix) and f.endswith(ext))
 
 
 def no_temporaries(name, d):
@@ -197,13 +193,8 @@ def small_tmpfs():
         case("tmpfs full", [exe, deck, *common, f"output.dir={d}", "grid.nx=48", "grid.ny=48",
                             "output.checkpoint_every=2"], IO_ERROR, ["No space left on device"], HDF5_NOISE)
         no_temporaries("tmpfs full", d)
-        readable = True
-        for f in files(d, ""):
-            try:
-                h5py.File(os.path.join(d, f), "r").close()
-            except OSError:
-                readable = False
-        checks.check(readable, "tmpfs full: every .h5 under a final name is readable")
+        bad = unreadable_hdf5(d)
+        checks.check(not bad, f"tmpfs full: every .h5 under a final name is readable ({bad})")
     finally:
         subprocess.run(["umount", d])
 

@@ -23,6 +23,23 @@ def checksums(directory, skip=()):
     return sums
 
 
+def files(d, prefix, ext=".h5"):
+    """Names of the files in d that start with prefix and end with ext, sorted."""
+    return sorted(f for f in os.listdir(d) if f.startswith(prefix) and f.endswith(ext))
+
+
+def unreadable_hdf5(d):
+    """Names of the .h5 files in d that h5py cannot open (a file under a final name must be complete)."""
+    import h5py
+    bad = []
+    for f in files(d, ""):
+        try:
+            h5py.File(os.path.join(d, f), "r").close()
+        except OSError:
+            bad.append(f)
+    return bad
+
+
 def run_within(cmd, time_limit, **kw):
     """Runs cmd (list; stderr into stdout) in a session of its own; returns (exit code, output), or (None, output)
     after killing the whole session (mpirun and its ranks) when it runs past time_limit seconds."""

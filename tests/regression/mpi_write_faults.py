@@ -24,9 +24,8 @@ import signal
 import subprocess
 import sys
 
-import h5py
 
-from harness import MPI_ENV, Checks, checksums, run_within
+from harness import MPI_ENV, Checks, checksums, files, run_within, unreadable_hdf5
 
 IO_ERROR = 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 TIME_LIMIT = 60  # seconds; a run still going then has ranks waiting for each other
@@ -59,10 +58,6 @@ def mpirun(args, limit=None):
     """Runs exe on 2 ranks with args (under a file-size limit (ranks, bytes) if given); returns (rc, output)."""
     wrapper = [sys.executable, os.path.abspath(__file__), LIMIT_OPTION, limit[0], str(limit[1])] if limit else []
     return run_within([*launcher, *wrapper, exe, *args], TIME_LIMIT, env=ENV, cwd=work)
-
-
-def files(d, prefix, ext=".h5"):
-    return sorted(f for f in os.listdir(d) if f.startswith(prefix) and f.endswith(ext))
 
 
 def fresh_run(name):
@@ -174,13 +169,8 @@ def small_tmpfs():
     try:
         case("tmpfs full", d, [deck, *common, f"output.dir={d}", "grid.nx=48", "grid.ny=48",
                                "output.checkpoint_every=2"], ["No space left on device"])
-        readable = True
-        for f in files(d, ""):
-            try:
-                h5py.File(os.path.join(d, f), "r").close()
-            except OSError:
-                readable = False
-        checks.check(readable, "tmpfs full: every .h5 under a final name is readable")
+        bad = unreadable_hdf5(d)
+        checks.check(not bad, f"tmpfs full: every .h5 under a final name is readable ({bad})")
     finally:
         subprocess.run(["umount", d])
 
