@@ -63,7 +63,7 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
   const int nt = grid_.nt, ib = grid_.i_begin(), jb = grid_.j_begin(), cells = grid_.nr * grid_.nt,
             ns = dust_.species();
   const Real ud = units_.density(), uv = units_.velocity(), ut = units_.time, GM = gas.gravity.GM;
-  const Real floor = dust_.settings().floor;
+  const Real floor = dust_.settings().floor, floor_ratio = dust_.settings().floor_ratio;
   auto rho_g = gas.rho, cs2 = gas.cs2, nu = gas.nu;
   auto Rc = grid_.Rc;
   auto g_cs = cells_.sound_speed, g_rho = cells_.density, g_om = cells_.omega, g_alpha = cells_.alpha;
@@ -82,7 +82,7 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
   par_for(
       "disc::coagulation_load", 0, cells, 0, ns, KOKKOS_LAMBDA(int c, int s) {
         const int i = ib + c / nt, j = jb + c % nt;
-        const Real above = math::max(Q(i, j, s, kRho) - floor, Real(0)) * ud;
+        const Real above = math::max(Q(i, j, s, kRho) - dust_floor(floor, floor_ratio, rho_g(i, j)), Real(0)) * ud;
         y(c, s) = above;
         y0(c, s) = above;
         v(c, s, 0) = W(i, j, s, kVR) * uv;  // GasCells order: R, z, phi

@@ -1,7 +1,9 @@
 // The coupled dust-gas driver (RBO24 sec. 6); see include/mote/disc/disc_driver.hpp.
 #include "mote/disc/disc_driver.hpp"
 
+#include <Kokkos_Core.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -72,20 +74,72 @@ bool DiscDriver::due(const SubSolver& s, const Clock& c, double time) const {
   return true;
 }
 
+namespace {
+
+double wall_seconds() {
+  Kokkos::fence();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+const char* schedule_name(Schedule::Kind kind) {
+  switch (kind) {
+    case Schedule::Kind::EveryStep:
+      return "every step";
+    case Schedule::Kind::EveryNSteps:
+      return "every N steps";
+    case Schedule::Kind::Interval:
+      return "interval";
+    case Schedule::Kind::Adaptive:
+      return "adaptive";
+  }
+  return "";
+}
+
+}  // namespace
+
 void DiscDriver::advance(double time, double dt) {
+  const double w0 = wall_seconds();
   dust_.step(dt);
+  dust_seconds_ += wall_seconds() - w0;
   const double t1 = time + dt;
   for (size_t k = 0; k < solvers_.size(); ++k) {
     auto& s = solvers_[k];
     auto& c = clocks_[k];
     ++c.steps;
     if (!due(s, c, t1)) continue;
+    const double w1 = wall_seconds();
     s.update(t1, t1 - c.last_time);
+    c.seconds += wall_seconds() - w1;
     c.last_time = t1;
     c.steps = 0;
     ++c.calls;
     if (s.schedule.kind == Schedule::Kind::Adaptive) c.proposed = s.next_interval();
   }
+}
+
+std::vector<io::Diagnostic> DiscDriver::diagnostics() const {
+  std::vector<io::Diagnostic> d{{"dust_seconds", dust_seconds_}};
+  for (size_t k = 0; k < solvers_.size(); ++k) {
+    d.push_back({solvers_[k].name + "_calls", static_cast<double>(clocks_[k].calls)});
+    d.push_back({solvers_[k].name + "_seconds", clocks_[k].seconds});
+  }
+  return d;
+}
+
+std::string DiscDriver::schedule_summary() const {
+  double total = dust_seconds_;
+  for (const auto& c : clocks_) total += c.seconds;
+  const double pct = total > 0 ? 100.0 / total : 0.0;
+  std::string out =
+      logging::format("driver: %-14s %-14s %10s %12s %7s\n", "sub-solver", "schedule", "calls", "seconds", "%");
+  out += logging::format("driver: %-14s %-14s %10s %12.4f %7.2f\n", "dust", "every step", "-", dust_seconds_,
+                         dust_seconds_ * pct);
+  for (size_t k = 0; k < solvers_.size(); ++k)
+    out += logging::format("driver: %-14s %-14s %10lld %12.4f %7.2f\n", solvers_[k].name.c_str(),
+                           schedule_name(solvers_[k].schedule.kind), clocks_[k].calls, clocks_[k].seconds,
+                           clocks_[k].seconds * pct);
+  out.pop_back();  // the log adds the last line break
+  return out;
 }
 
 void DiscDriver::update_gas(double time, double elapsed) {

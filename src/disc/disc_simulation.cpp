@@ -18,12 +18,12 @@ namespace {
 
 /// Kernel of well_mixed, in a named function (CUDA extended lambdas cannot sit in a lambda).
 void fill_well_mixed(const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W, const RealView1& ratio,
-                     Real floor) {
+                     Real floor, Real gas_floor) {
   auto rho = gas.rho, vR = gas.vR, vphi = gas.vphi, vZ = gas.vZ;
   par_for(
       "disc::well_mixed_dust", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(), 0,
       static_cast<int>(W.extent(2)), KOKKOS_LAMBDA(int i, int j, int s) {
-        W(i, j, s, kRho) = math::max(ratio(s) * rho(i, j), floor);
+        W(i, j, s, kRho) = rho(i, j) > gas_floor ? math::max(ratio(s) * rho(i, j), floor) : floor;
         W(i, j, s, kVR) = vR(i, j);
         W(i, j, s, kVphi) = vphi(i, j);
         W(i, j, s, kVZ) = vZ(i, j);
@@ -32,8 +32,10 @@ void fill_well_mixed(const mesh::Grid& grid, const GasFields& gas, const View<Re
 
 }  // namespace
 
-DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_to_gas, double floor) {
-  return [eps = std::move(dust_to_gas), floor](const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W) {
+DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_to_gas, double floor,
+                                                       double gas_floor) {
+  return [eps = std::move(dust_to_gas), floor, gas_floor](const mesh::Grid& grid, const GasFields& gas,
+                                                          const View<Real****>& W) {
     const int ns = static_cast<int>(W.extent(2));
     if (static_cast<int>(eps.size()) != ns)
       throw core::DeckError(logging::cat("well-mixed dust: ", eps.size(), " dust-to-gas ratios for ", ns, " species"));
@@ -41,7 +43,7 @@ DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_
     auto ratio_h = Kokkos::create_mirror_view(ratio);
     for (int s = 0; s < ns; ++s) ratio_h(s) = eps[s];
     Kokkos::deep_copy(ratio, ratio_h);
-    fill_well_mixed(grid, gas, W, ratio, floor);
+    fill_well_mixed(grid, gas, W, ratio, floor, gas_floor);
   };
 }
 
@@ -61,7 +63,9 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
     : units_(units),
       grid_(std::make_unique<mesh::Grid>(mesh::GridSpec::from_deck(deck), comm)),
       gas_(std::make_unique<GasDisc>(deck, *grid_, units)) {
-  dust_ = std::make_unique<DustDynamics>(*grid_, DustSettings::from_deck(deck, units, gas_->config().gravity()));
+  auto dust_settings = DustSettings::from_deck(deck, units, gas_->config().gravity());
+  dust_settings.gas_floor = gas_->config().rho_floor;
+  dust_ = std::make_unique<DustDynamics>(*grid_, std::move(dust_settings));
   dust_->set_gas(gas_->fields());
   initial_dust(*grid_, gas_->fields(), dust_->W);
   dust_->initialise_from_primitives();
@@ -124,6 +128,7 @@ void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
 void DiscSimulation::save_state(io::H5File& file) const {
   mesh::write_state(file, "/state/dust_Q", *grid_, dust_->Q);
   mesh::write_state(file, "/state/dust_W", *grid_, dust_->W);
+  mesh::write_state(file, "/state/dust_budget", *grid_, dust_->budget);
   gas_->save_state(file);
   driver_->save_state(file);
   if (temperature_) temperature_->save_state(file);
@@ -133,12 +138,16 @@ void DiscSimulation::save_state(io::H5File& file) const {
 void DiscSimulation::load_state(const io::H5File& file) {
   mesh::read_state(file, "/state/dust_Q", *grid_, dust_->Q);
   mesh::read_state(file, "/state/dust_W", *grid_, dust_->W);
+  if (file.exists("/state/dust_budget"))  // checkpoints before the budget: it restarts from zero
+    mesh::read_state(file, "/state/dust_budget", *grid_, dust_->budget);
   if (temperature_) temperature_->load_state(file);  // hands T to the gas before its structure is rebuilt
   gas_->load_state(file);
   dust_->set_gas(gas_->fields());
   driver_->load_state(file);
   if (coag_) coag_->load_state(file);
 }
+
+void DiscSimulation::finish(double) { logging::info(driver_->schedule_summary()); }
 
 double DiscSimulation::min_dust_density() const {
   auto Q = dust_->Q;
@@ -155,9 +164,18 @@ double DiscSimulation::min_dust_density() const {
 
 std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
   std::vector<io::Diagnostic> d;
-  for (int s = 0; s < dust_->species(); ++s) d.push_back({"dust_mass_" + std::to_string(s), dust_->mass(s)});
+  double total = 0.0;
+  for (int s = 0; s < dust_->species(); ++s) {
+    d.push_back({"dust_mass_" + std::to_string(s), dust_->mass(s)});
+    total += d.back().value;
+  }
+  const auto budget = dust_->mass_budget();
+  d.push_back({"dust_mass", total});
+  d.push_back({"dust_floor_added", budget.floor_added});
+  d.push_back({"dust_outflow", budget.outflow});
   d.push_back({"dust_rho_min", min_dust_density()});
   d.push_back({"gas_mass", gas_->mass()});
+  for (const auto& t : driver_->diagnostics()) d.push_back(t);
   if (temperature_)
     for (const auto& t : temperature_->diagnostics()) d.push_back(t);
   return d;

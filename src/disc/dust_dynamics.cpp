@@ -2,6 +2,7 @@
 // sec. 3 and 3.1 (eq. 4-19); see include/mote/disc/dust_dynamics.hpp.
 #include "mote/disc/dust_dynamics.hpp"
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -14,13 +15,33 @@ namespace mote::disc {
 
 namespace {
 
-/// At least one species, and one Schmidt number per species (or none: all 1).
+/// Grain radii (cm) from dust.sizes, or dust.species radii logarithmically spaced
+/// from dust.a_min to dust.a_max (both included) for dust.sizes_from = "log".
+std::vector<double> grain_sizes_cm(const core::Deck& d) {
+  if (d.string("dust.sizes_from") == "list") return d.real_array("dust.sizes");
+  const long long n = d.integer("dust.species");
+  const double a0 = d.real("dust.a_min"), a1 = d.real("dust.a_max");
+  std::vector<double> a(static_cast<size_t>(n), a0);
+  for (long long s = 1; s < n; ++s)
+    a[static_cast<size_t>(s)] = a0 * std::pow(a1 / a0, static_cast<double>(s) / static_cast<double>(n - 1));
+  return a;
+}
+
+/// At least one species, a size range that is one, and one Schmidt number per
+/// species (or none: all 1).
 void check_species(const core::Deck& d, core::DeckCheck& check) {
-  const size_t ns = d.real_array("dust.sizes").size(), nsc = d.real_array("dust.schmidt").size();
-  if (ns == 0) check.fail("dust.sizes", "at least one species is needed");
+  const bool list = d.string("dust.sizes_from") == "list";
+  const std::string count_key = list ? "dust.sizes" : "dust.species";
+  const size_t ns = list ? d.real_array("dust.sizes").size() : static_cast<size_t>(d.integer("dust.species"));
+  const size_t nsc = d.real_array("dust.schmidt").size();
+  if (list && ns == 0) check.fail("dust.sizes", "at least one species is needed (or dust.sizes_from = \"log\")");
+  if (!list && !d.real_array("dust.sizes").empty())
+    check.fail("dust.sizes", "is a list of sizes; with " + check.quote("dust.sizes_from") + " leave it out");
+  if (!list && ns > 1 && !(d.real("dust.a_max") > d.real("dust.a_min")))
+    check.fail("dust.a_max", "must exceed " + check.quote("dust.a_min"));
   if (nsc != 0 && nsc != ns)
     check.fail("dust.schmidt",
-               logging::cat("has ", nsc, " values for ", ns, " species (", check.quote("dust.sizes"), ")"));
+               logging::cat("has ", nsc, " values for ", ns, " species (", check.quote(count_key), ")"));
 }
 
 using View4 = View<Real****>;
@@ -51,13 +72,35 @@ RealView2 slope_geometry(const std::string& name, const RealView1& xc, const Rea
 
 void DustSettings::declare(core::DeckSchema& s) {
   s.table("dust", "Pressureless dust species on the grid (RBO24 sec. 3).");
-  s.real_array("dust.sizes").greater_than(0.0).unit("cm").doc("Grain radius of each species.");
+  s.string("dust.sizes_from")
+      .default_value(std::string("list"))
+      .one_of({"list", "log"})
+      .doc("Grain radii from the list dust.sizes, or dust.species radii log-spaced from dust.a_min to dust.a_max.");
+  s.real_array("dust.sizes")
+      .default_value(std::vector<double>{})
+      .greater_than(0.0)
+      .unit("cm")
+      .doc("Grain radius of each species (sizes_from = \"list\").");
+  s.integer("dust.species")
+      .sets_state_size()
+      .default_value(1LL)
+      .min(1)
+      .doc("Number of species (sizes_from = \"log\").");
+  s.real("dust.a_min").default_value(1e-5).greater_than(0.0).unit("cm").doc("Smallest radius (sizes_from = \"log\").");
+  s.real("dust.a_max").default_value(0.1).greater_than(0.0).unit("cm").doc("Largest radius (sizes_from = \"log\").");
   s.real("dust.rho_grain").default_value(1.6).greater_than(0.0).unit("g cm^-3").doc("Grain material density.");
   s.real_array("dust.schmidt")
       .default_value(std::vector<double>{})
       .greater_than(0.0)
       .doc("Schmidt number per species (eq. 15); empty = 1 for every species.");
   s.real("dust.floor").default_value(1e-40).greater_than(0.0).unit("code density").doc("Density floor.");
+  s.real("dust.floor_ratio")
+      .default_value(0.0)
+      .min(0.0)
+      .less_than(1.0)
+      .doc(
+          "Dust-to-gas floor: the floor of a cell is max(dust.floor, floor_ratio rho_g); cells below 10 x their floor "
+          "do not limit the time-step (cuDisc: 1e-10).");
   s.real("dust.cfl_advection").default_value(0.4).greater_than(0.0).max(1.0).doc("C_adv of eq. 18.");
   s.real("dust.cfl_diffusion").default_value(0.2).greater_than(0.0).max(1.0).doc("C_diff of eq. 19.");
   s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
@@ -73,11 +116,12 @@ void DustSettings::declare(core::DeckSchema& s) {
 
 DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSystem& u, const StellarGravity& star) {
   DustSettings st;
-  for (double a : d.real_array("dust.sizes")) st.sizes.push_back(a / u.length);
+  for (double a : grain_sizes_cm(d)) st.sizes.push_back(a / u.length);
   st.schmidt = d.real_array("dust.schmidt");
   if (st.schmidt.empty()) st.schmidt.assign(st.sizes.size(), 1.0);
   st.rho_grain = d.real("dust.rho_grain") / u.density();
   st.floor = d.real("dust.floor");
+  st.floor_ratio = d.real("dust.floor_ratio");
   st.cfl_advection = d.real("dust.cfl_advection");
   st.cfl_diffusion = d.real("dust.cfl_diffusion");
   st.diffusion = d.boolean("dust.diffusion");
@@ -93,6 +137,7 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
     : grid_(grid), settings_(std::move(settings)), ns_(static_cast<int>(settings_.sizes.size())), halo_(grid) {
   const int NI = grid.nr_total(), NJ = grid.nt_total();
   Q = View4("dust::Q", NI, NJ, ns_, kDustVars);
+  budget = View4("dust::mass_budget", NI, NJ, ns_, 2);
   W = View4("dust::W", NI, NJ, ns_, kDustVars);
   W_half_ = View4("dust::W_half", NI, NJ, ns_, kDustVars);
   flux_R_ = View4("dust::flux_R", NI + 1, NJ, ns_, kDustVars);
@@ -131,9 +176,16 @@ void DustDynamics::set_gas(const GasFields& gas) {
 }
 
 void DustDynamics::initialise_from_primitives() {
-  fill_ghosts(W);
   auto Q_ = Q, W_ = W;
   auto Rc = grid_.Rc;
+  auto rho_g = gas_.rho;
+  const Real floor = settings_.floor, floor_ratio = settings_.floor_ratio;
+  for_cells(
+      "disc::dust_initial_floor", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(), ns_,
+      KOKKOS_LAMBDA(int i, int j, int s) {
+        W_(i, j, s, kRho) = math::max(W_(i, j, s, kRho), dust_floor(floor, floor_ratio, rho_g(i, j)));
+      });
+  fill_ghosts(W);
   for_cells(
       "disc::dust_prim_to_cons", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
         const Real rho = W_(i, j, s, kRho);
@@ -203,10 +255,13 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   auto Rc = grid_.Rc, Re = grid_.Re, tan_tc = grid_.tan_tc, tan_te = grid_.tan_te;
   auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
   auto AR = grid_.AR, AZ = grid_.AZ;
-  auto inv_rho_g = inv_rho_g_, gas_D = gas_D_;
+  auto inv_rho_g = inv_rho_g_, gas_D = gas_D_, rho_g = gas_.rho;
   auto slope = slope_;
   auto sc = schmidt_;
   const auto coef = diffusion_;
+  // No turbulent diffusion into or out of gas at its floor (an evacuated cavity):
+  // dust diffused there would be decoupled and fall freely (as cuDisc).
+  const Real gas_cut = kGasFloorDiffusionFactor * settings_.gas_floor;
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
   const auto& b = settings_.boundaries;
   const bool closed_in = grid_.has_inner_boundary() && b.inner == mesh::BoundaryKind::Closed;
@@ -237,7 +292,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
           f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
           for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
-          if (diffuse) {
+          if (diffuse && rho_g(i - 1, j) > gas_cut && rho_g(i, j) > gas_cut) {
             const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
             const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
             const Real* up = fd > 0 ? ql : qr;
@@ -277,7 +332,7 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
           f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
           for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
-          if (diffuse) {
+          if (diffuse && rho_g(i, j - 1) > gas_cut && rho_g(i, j) > gas_cut) {
             const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
             Real fd;
             if (radial) {
@@ -303,12 +358,12 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
 
 void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const View4& w_out, bool update_q) {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
-  auto Q_ = Q, FR = flux_R_, FZ = flux_Z_;
+  auto Q_ = Q, FR = flux_R_, FZ = flux_Z_, B = budget;
   auto V = grid_.V, Zc = grid_.Zc;
   auto Rc = grid_.Rc;
   auto rho_g = gas_.rho, cs2 = gas_.cs2, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
   auto sizes = sizes_;
-  const Real dt = dt_stage, floor = settings_.floor, rho_m = settings_.rho_grain;
+  const Real dt = dt_stage, floor = settings_.floor, floor_ratio = settings_.floor_ratio, rho_m = settings_.rho_grain;
   const StellarGravity star = settings_.star;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
@@ -330,9 +385,10 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
         // transport (advection and eq. 16 diffusion) only averages velocities, and
         // this bound stops round-off in near-empty cells from creating huge
         // velocities there (which would collapse the time-step).
-        const Real rho = math::max(q[kRho], floor);
+        const Real f = dust_floor(floor, floor_ratio, rho_g(i, j));
+        const Real rho = math::max(q[kRho], f);
         Real vR, vphi, vZ;
-        if (q[kRho] > floor) {
+        if (q[kRho] > f) {
           Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
           for (int a = i - 1; a <= i + 1; ++a)
             for (int c = j - 1; c <= j + 1; ++c) {
@@ -365,6 +421,7 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
         w_out(i, j, s, kVphi) = vphi;
         w_out(i, j, s, kVZ) = vZ;
         if (update_q) {
+          if (q[kRho] < f) B(i, j, s, 0) += (f - q[kRho]) * V(i, j);
           Q_(i, j, s, kRho) = rho;
           Q_(i, j, s, kMomR) = rho * vR;
           Q_(i, j, s, kAngMom) = rho * vphi * R;
@@ -381,6 +438,7 @@ void DustDynamics::step(double dt) {
   // Boundary conditions again after step (iv); (v-viii) second-order fluxes at t^{n+1/2}.
   fill_ghosts(W_half_);
   compute_fluxes(W_half_, true);
+  account_outflow(dt);
   advance_stage(W_half_, dt, W, true);
   fill_ghosts(W);
 }
@@ -389,9 +447,10 @@ double DustDynamics::max_dt() const {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto W_ = W;
   auto dR = grid_.dR, Rc = grid_.Rc, tan_te = grid_.tan_te;
-  auto nu = gas_.nu;
+  auto nu = gas_.nu, rho_g = gas_.rho;
   auto sc = schmidt_;
   const Real ca = settings_.cfl_advection, cd = settings_.cfl_diffusion;
+  const Real floor = settings_.floor, floor_ratio = settings_.floor_ratio;
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
   const bool gravity = settings_.gravity;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
@@ -402,6 +461,13 @@ double DustDynamics::max_dt() const {
       "disc::dust_max_dt", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
       KOKKOS_LAMBDA(int i, int j, int s, Real& m) {
         const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
+        if (diffuse) {
+          const Real D = nu(i, j) / sc(s);
+          const Real dx2 = radial ? math::min(dR(i) * dR(i), dZ * dZ) : dZ * dZ;
+          if (D > 0) m = math::min(m, cd * dx2 / D);
+        }
+        // Advection and sources only where there is dust (cells near the floor move with the gas).
+        if (W_(i, j, s, kRho) < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j))) return;
         const Real vR = math::fabs(W_(i, j, s, kVR)), vZ = math::fabs(W_(i, j, s, kVZ));
         if (radial && vR > 0) m = math::min(m, ca * dR(i) / vR);
         if (vZ > 0) m = math::min(m, ca * dZ / vZ);
@@ -416,14 +482,44 @@ double DustDynamics::max_dt() const {
           if (radial && aR > 0) m = math::min(m, ca * math::sqrt(dR(i) / aR));
           if (aZ > 0) m = math::min(m, ca * math::sqrt(dZ / aZ));
         }
-        if (diffuse) {
-          const Real D = nu(i, j) / sc(s);
-          const Real dx2 = radial ? math::min(dR(i) * dR(i), dZ * dZ) : dZ * dZ;
-          if (D > 0) m = math::min(m, cd * dx2 / D);
-        }
       },
       Kokkos::Min<Real>(dt));
   return grid_.comm().min(dt);
+}
+
+void DustDynamics::account_outflow(double dt) {
+  const int ib = grid_.i_begin(), ie = grid_.i_end(), jb = grid_.j_begin(), je = grid_.j_end(), ns = ns_;
+  const bool inner = grid_.i_offset == 0, outer = grid_.i_offset + grid_.nr == grid_.nr_global;
+  auto B = budget, FR = flux_R_, FZ = flux_Z_;
+  const Real h = dt;
+  par_for(
+      "disc::dust_outflow_R", jb, je, 0, ns, KOKKOS_LAMBDA(int j, int s) {
+        if (inner) B(ib, j, s, 1) -= h * FR(ib, j, s, kRho);
+        if (outer) B(ie - 1, j, s, 1) += h * FR(ie, j, s, kRho);
+      });
+  par_for(
+      "disc::dust_outflow_Z", ib, ie, 0, ns, KOKKOS_LAMBDA(int i, int s) {
+        B(i, jb, s, 1) -= h * FZ(i, jb, s, kRho);
+        B(i, je - 1, s, 1) += h * FZ(i, je, s, kRho);
+      });
+}
+
+DustDynamics::MassBudget DustDynamics::mass_budget() const {
+  auto B = budget;
+  const int ns = ns_;
+  Real added = 0, out = 0;
+  Kokkos::parallel_reduce(
+      "disc::dust_mass_budget",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({grid_.i_begin(), grid_.j_begin()},
+                                                        {grid_.i_end(), grid_.j_end()}),
+      KOKKOS_LAMBDA(int i, int j, Real& a, Real& o) {
+        for (int s = 0; s < ns; ++s) {
+          a += B(i, j, s, 0);
+          o += B(i, j, s, 1);
+        }
+      },
+      added, out);
+  return {grid_.comm().sum(added), grid_.comm().sum(out)};
 }
 
 double DustDynamics::mass(int s) const {

@@ -81,6 +81,21 @@ void GasConfig::declare(core::DeckSchema& s) {
       .min(0.0)
       .unit("code length")
       .doc("Taper exp(-(R / R_c)^(2 - Sigma_index)) of the initial Sigma (Lynden-Bell & Pringle); 0: none.");
+  s.real("gas.R_cavity")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code length")
+      .doc(
+          "Inner cavity exp(-(R_cavity / R)^cavity_index) of the initial Sigma (RBO24 sec. 7 transition disc); 0: "
+          "none.");
+  s.real("gas.cavity_index")
+      .default_value(10.0)
+      .greater_than(0.0)
+      .doc("Steepness of the inner cavity (RBO24 sec. 7: 10).");
+  s.string("gas.radial_velocity")
+      .default_value(std::string("viscous"))
+      .one_of({"viscous", "zero"})
+      .doc("Gas v_R: viscous (eq. 28-31) or zero (a static disc, as RBO24's transition disc of sec. 7).");
   const std::vector<std::string> bcs = {"closed", "zero_torque", "extrapolate", "user"};
   s.string("gas.inner_boundary")
       .default_value(std::string("extrapolate"))
@@ -136,6 +151,9 @@ GasConfig GasConfig::from_deck(const core::Deck& d, const units::UnitSystem& u) 
   c.Sigma0 = d.real("gas.Sigma0");
   c.Sigma_index = d.real("gas.Sigma_index");
   c.R_c = d.real("gas.R_c");
+  c.R_cavity = d.real("gas.R_cavity");
+  c.cavity_index = d.real("gas.cavity_index");
+  c.viscous_vR = d.string("gas.radial_velocity") == "viscous";
   c.inner = gas_boundary(d.string("gas.inner_boundary"));
   c.outer = gas_boundary(d.string("gas.outer_boundary"));
   c.cfl = d.real("gas.cfl");

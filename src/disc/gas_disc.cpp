@@ -37,7 +37,8 @@ GasDisc::GasDisc(const GasConfig& config, const mesh::Grid& grid, const units::U
   set_surface_density([c](double R) {
     const double x = R / c.R_ref;
     const double taper = c.R_c > 0 ? std::exp(-std::pow(R / c.R_c, 2.0 - c.Sigma_index)) : 1.0;
-    return c.Sigma0 * std::pow(x, -c.Sigma_index) * taper;
+    const double cavity = c.R_cavity > 0 ? std::exp(-std::pow(c.R_cavity / R, c.cavity_index)) : 1.0;
+    return c.Sigma0 * std::pow(x, -c.Sigma_index) * taper * cavity;
   });
 }
 
@@ -100,7 +101,7 @@ void GasDisc::update_structure() {
   gas_viscosity(grid_, cfg_, j_mid_, gas_.cs2, gas_.nu, gas_.nu_mid);
   gas_hydrostatic_density(grid_, cfg_.gravity(), gas_.column_fraction, cfg_.rho_floor, j_mid_, gas_.cs2, gas_.Sigma,
                           gas_.rho);
-  gas_velocities(grid_, halo_, scratch_, gas_);
+  gas_velocities(grid_, halo_, scratch_, gas_, cfg_.viscous_vR);
 }
 
 void GasDisc::evolve_surface_density(double dt, double time) {

@@ -80,7 +80,8 @@ GasVelocityScratch::GasVelocityScratch(int ni, int nj)
       d("gas::vel_d", ni, nj),
       e("gas::vel_e", ni, nj) {}
 
-void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityScratch& s, GasFields& gas) {
+void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityScratch& s, GasFields& gas,
+                    bool viscous_vR) {
   const int ni = grid.nr_total(), nj = grid.nt_total();
   auto Rc = grid.Rc, tc = grid.tc, tan_tc = grid.tan_tc;
   auto rho = gas.rho, cs2 = gas.cs2, nu = gas.nu, vphi = gas.vphi, vR = gas.vR, vZ = gas.vZ;
@@ -104,6 +105,11 @@ void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityS
       });
   extrapolate_edges(vphi, rho, false, Rc, tan_tc);
   halo.exchange(vphi);
+  Kokkos::deep_copy(vZ, 0.0);
+  if (!viscous_vR) {
+    Kokkos::deep_copy(vR, 0.0);
+    return;
+  }
 
   par_for(
       "disc::gas_vphi_products", 0, ni, 0, nj, KOKKOS_LAMBDA(int i, int j) {
@@ -140,7 +146,6 @@ void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityS
       });
   extrapolate_edges(vR, rho, false, Rc, tan_tc);
   halo.exchange(vR);
-  Kokkos::deep_copy(vZ, 0.0);
 }
 
 }  // namespace mote::disc

@@ -20,7 +20,9 @@
 //
 // The driver's bookkeeping (last call time, steps since the last call, proposed
 // interval of every sub-solver) is saved in checkpoints, so a restart continues
-// bit-identically.
+// bit-identically. The wall time of the dust steps and of every sub-solver
+// (the execution space fenced around each) goes to the history and, at the
+// end of a run, to the log.
 #pragma once
 
 #include <functional>
@@ -31,6 +33,7 @@
 #include "mote/disc/dust_dynamics.hpp"
 #include "mote/disc/gas_disc.hpp"
 #include "mote/io/h5_file.hpp"
+#include "mote/io/simulation.hpp"
 
 namespace mote::disc {
 
@@ -81,6 +84,11 @@ class DiscDriver {
   const std::vector<SubSolver>& sub_solvers() const { return solvers_; }
   /// Number of calls of sub-solver k so far.
   long long calls(int k) const { return clocks_[k].calls; }
+  /// History columns: wall seconds of the dust steps (dust_seconds) and, per
+  /// sub-solver, its calls (<name>_calls) and wall seconds (<name>_seconds) in this process.
+  std::vector<io::Diagnostic> diagnostics() const;
+  /// One line per sub-solver: schedule, calls, wall seconds and share of the step.
+  std::string schedule_summary() const;
 
   /// The dust CFL step (eq. 17-19), identical on every rank.
   double max_dt() const { return dust_.max_dt(); }
@@ -97,6 +105,7 @@ class DiscDriver {
     long long steps = 0;     // dust steps since the last call
     double proposed = 0.0;   // adaptive: interval proposed after the last call
     long long calls = 0;
+    double seconds = 0.0;  // wall time in this process (not checkpointed)
   };
   bool due(const SubSolver& s, const Clock& c, double time) const;
   void update_gas(double time, double elapsed);
@@ -106,6 +115,7 @@ class DiscDriver {
   DriverSettings settings_;
   std::vector<SubSolver> solvers_;
   std::vector<Clock> clocks_;
+  double dust_seconds_ = 0.0;
 };
 
 }  // namespace mote::disc

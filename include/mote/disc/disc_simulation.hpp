@@ -14,9 +14,12 @@
 // stopping time, eq. 14), the cell field v_K = (-R g_R)^1/2 (circular
 // speed of a test particle at (R, Z)) and /data/dust_sizes (cm), /data/GM.
 // With [radiation] also rad_E (radiation energy density, all bands).
-// Checkpoints: dust Q and W exactly, gas Sigma, the driver's bookkeeping,
+// Checkpoints: dust Q and W exactly, the dust mass budget, gas Sigma, the driver's bookkeeping,
 // T and E_R^b of the temperature solver and the coagulation's proposed sub-steps.
-// History: dust_mass_<s>, dust_rho_min, gas_mass (and DiscTemperature::diagnostics).
+// History: dust_mass_<s>, their sum dust_mass, the budget dust_floor_added and
+// dust_outflow (DustDynamics::mass_budget: dust_mass - dust_floor_added +
+// dust_outflow is conserved), dust_rho_min, gas_mass, the driver's calls and wall
+// seconds per sub-solver (DiscDriver::diagnostics), and DiscTemperature::diagnostics.
 #pragma once
 
 #include <functional>
@@ -42,8 +45,10 @@ class DiscSimulation : public io::Simulation {
   /// from the initial gas.
   using InitialDust = std::function<void(const mesh::Grid& grid, const GasFields& gas, const View<Real****>& W)>;
 
-  /// Dust density dust_to_gas[s] * rho_g and the gas velocity in every cell.
-  static InitialDust well_mixed(std::vector<double> dust_to_gas, double floor);
+  /// Dust density dust_to_gas[s] * rho_g (at least `floor`) and the gas velocity
+  /// in every cell; cells whose gas density is at most gas_floor (an evacuated
+  /// cavity) get only the floor.
+  static InitialDust well_mixed(std::vector<double> dust_to_gas, double floor, double gas_floor = 0.0);
 
   /// Tables [grid], [boundaries], [gas], [star], [dust], [driver].
   static void declare(core::DeckSchema& schema);
@@ -68,6 +73,8 @@ class DiscSimulation : public io::Simulation {
   void load_state(const io::H5File& file) override;
   std::vector<io::Diagnostic> diagnostics() const override;
   std::optional<io::NonFinite> find_non_finite() const override;
+  /// Logs the driver's schedule summary (calls and wall time per sub-solver).
+  void finish(double time) override;
 
   /// Smallest dust density over the active cells and species (all ranks).
   double min_dust_density() const;

@@ -42,11 +42,27 @@ enum DustVar : int { kRho = 0, kMomR = 1, kAngMom = 2, kMomZ = 3, kDustVars = 4 
 // Primitive components use the same slots: rho, v_R, v_phi, v_Z.
 enum DustPrim : int { kVR = 1, kVphi = 2, kVZ = 3 };
 
+/// Floor of the dust density in a cell of gas density rho_g: an absolute floor
+/// and a dust-to-gas ratio floor (as cuDisc; RBO24 sec. 7).
+KOKKOS_INLINE_FUNCTION Real dust_floor(Real floor, Real floor_ratio, Real rho_g) {
+  return math::max(floor, floor_ratio * rho_g);
+}
+
+/// Cells whose dust density is below this multiple of the floor carry no dust
+/// that matters: their velocity and acceleration do not limit the time-step
+/// (as cuDisc; the diffusion limit, a property of the gas, still applies).
+inline constexpr Real kFloorCflFactor = 10.0;
+/// Faces next to a cell whose gas density is below this multiple of the gas
+/// floor carry no turbulent diffusion flux (as cuDisc).
+inline constexpr Real kGasFloorDiffusionFactor = 1.1;
+
 struct DustSettings {
   std::vector<double> sizes;    // grain radii, code length
   std::vector<double> schmidt;  // per species
   double rho_grain = 1.0;       // material density, code units
   double floor = 1e-40;         // density floor, code units
+  double floor_ratio = 0.0;     // dust-to-gas floor: the floor is max(floor, floor_ratio rho_g)
+  double gas_floor = 0.0;       // the gas density floor (gas.rho_floor), code units
   double cfl_advection = 0.4, cfl_diffusion = 0.2;
   bool diffusion = true, drag = true, gravity = true;
   bool radial_fluxes = true;  // false: no flux through radial faces (columns independent)
@@ -68,7 +84,8 @@ class DustDynamics {
   /// Conserved and primitive state, (nr_total, nt_total, species, 4).
   View<Real****> Q, W;
 
-  /// Sets Q from the primitives W in the active cells and fills the ghost cells.
+  /// Raises W to the floor (needs set_gas), sets Q from the primitives W in the
+  /// active cells and fills the ghost cells.
   void initialise_from_primitives();
   /// Takes the gas state used by drag, diffusion and the time-step; recomputes
   /// the diffusion-stencil coefficients (D = rho_g nu). Call after each gas update.
@@ -79,6 +96,17 @@ class DustDynamics {
   void step(double dt);
   /// Total mass of species s over the whole grid (all ranks).
   double mass(int s) const;
+  /// Dust mass added by the floor and lost through the grid's outer faces since
+  /// the start of the run, all species and ranks: the mass of every species
+  /// changes only by these and by coagulation (which conserves the total), so
+  /// sum_s mass(s) - floor_added + outflow stays at its initial value.
+  struct MassBudget {
+    double floor_added = 0.0, outflow = 0.0;
+  };
+  MassBudget mass_budget() const;
+  /// Per-cell budget (nr_total, nt_total, species, 2): floor additions, outflow
+  /// through the cell's faces on the grid boundary (checkpointed).
+  View<Real****> budget;
   /// Stopping times (i, j, s) from the current gas state (Epstein, eq. 14).
   View<Real***> stopping_times() const;
 
@@ -90,6 +118,8 @@ class DustDynamics {
   /// tan(theta) (cells j in [ng-1, ng+nt]) into slope_, once per cell.
   void compute_slopes(const View<Real****>& w, bool radial);
   void advance_stage(const View<Real****>& w_source, double dt_stage, const View<Real****>& w_out, bool update_q);
+  /// Adds dt times the mass fluxes through the grid's outer faces to the budget.
+  void account_outflow(double dt);
 
  private:
   const mesh::Grid& grid_;

@@ -6,7 +6,9 @@
 //  * viscosity (sec. 3.4): alpha c_s H = alpha cs^2 / Omega_K(R), or
 //    nu_0 (R / R_ref)^nu_index (nu_0 <= 0: nu_0 = alpha cs^2 / Omega_K at R_ref);
 //  * initial surface density Sigma_0 (R / R_ref)^(-p) exp(-(R / R_c)^(2 - p))
-//    (Lynden-Bell & Pringle 1974 similarity profile; R_c = 0: no taper);
+//    (Lynden-Bell & Pringle 1974 similarity profile; R_c = 0: no taper), times
+//    exp(-(R_cavity / R)^k) for an inner cavity (RBO24 sec. 7; R_cavity = 0: none);
+//  * the gas v_R: viscous (eq. 28-31) or zero;
 //  * boundary conditions of the viscous evolution (eq. 26) at R_in and R_out.
 #pragma once
 
@@ -50,6 +52,9 @@ struct GasConfig {
   double Sigma0 = 1.0;       // code surface density at R_ref
   double Sigma_index = 1.0;  // p
   double R_c = 0.0;          // taper radius, code length (0: none)
+  double R_cavity = 0.0;     // inner cavity radius, code length (0: none)
+  double cavity_index = 10.0;
+  bool viscous_vR = true;  // false: v_R = 0 (gas.radial_velocity = "zero")
   // Numerics.
   GasBoundary inner = GasBoundary::Extrapolate, outer = GasBoundary::Extrapolate;
   double cfl = 0.5;             // fraction of the explicit (positivity) limit of eq. 26

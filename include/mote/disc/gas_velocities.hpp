@@ -30,7 +30,9 @@ struct GasVelocityScratch {
   GasVelocityScratch(int ni, int nj);
 };
 
-/// vphi, vR (eq. 27-31) and vZ = 0 on every cell from rho, cs2, nu of `gas`.
-void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityScratch& scratch, GasFields& gas);
+/// vphi, vR (eq. 27-31) and vZ = 0 on every cell from rho, cs2, nu of `gas`;
+/// vR = 0 instead of eq. 28 when !viscous_vR (a static gas disc, RBO24 sec. 7).
+void gas_velocities(const mesh::Grid& grid, mesh::RadialHalo& halo, GasVelocityScratch& scratch, GasFields& gas,
+                    bool viscous_vR = true);
 
 }  // namespace mote::disc
