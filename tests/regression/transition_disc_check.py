@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""The transition disc of RBO24 sec. 7 on the CI deck (issue 20): the initial
+state is the paper's set-up, the dust mass budget closes with dust dynamics,
+outflow boundaries and coagulation all on, and a restart is bit-identical.
+
+usage: transition_disc_check.py EXE WORKDIR DECK
+Checks:
+  * gas Sigma = Sigma_0 (R/au)^-1 exp[-(5 au/R)^10] (floored), relative 1e-12;
+  * gas T = T_* (phi/2)^1/4 (R_*/R)^1/2 with phi = 0.05, R_* = 1.7 R_sun,
+    T_* = 4500 K (DustPy's mid-plane temperature), vertically constant, 1e-12;
+  * initial dust-to-gas ratio per species = the MRN share 0.01 a^0.5 / sum a^0.5
+    wherever the gas is above 10 x its floor, 1e-12; floor dust elsewhere;
+  * mass budget: sum_s M_s - floor_added + outflow equals its initial value to
+    1e-10 of the dust mass on every history row; the coagulation ran and moved
+    mass between species;
+  * a run stopped half-way and restarted ends bit-identical to one run
+    (every snapshot field), with the same history budget columns.
+"""
+import os
+import shutil
+import sys
+
+import numpy as np
+
+from harness import Checks, run
+import mote
+
+exe, work, deck = sys.argv[1], sys.argv[2], sys.argv[3]
+shutil.rmtree(work, ignore_errors=True)
+full, split = os.path.join(work, "full"), os.path.join(work, "split")
+run([exe, deck, f"output.dir={full}"])
+p = run([exe, deck, f"output.dir={split}", "run.max_steps=500"])
+p = run([exe, "--restart", "latest", deck, f"output.dir={split}"])
+checks = Checks()
+checks.check("restarted from" in p.stdout, "the second part restarted from a checkpoint")
+checks.check("driver: coagulation" in p.stdout, "the log lists the coagulation's calls and wall time")
+
+au, M_sun, R_sun = 1.495978707e13, 1.98840987e33, 6.957e10
+s0 = mote.Snapshot(mote.list_snapshots(full)[0])
+R = s0.data["R_centres"]
+Sigma0 = 250.0 / (M_sun / au**2)
+sigma_ref = np.maximum(Sigma0 / R * np.exp(-((5.0 / R) ** 10)), 1e-60)
+e = np.max(np.abs(s0.data["gas_Sigma"] / sigma_ref - 1))
+checks.check(e <= 1e-12, f"Sigma_g = Sigma_0 (R/au)^-1 exp[-(5 au/R)^10]: max relative error {e:.2e} <= 1e-12")
+T_ref = 4500.0 * (0.05 / 2) ** 0.25 * np.sqrt(1.7 * R_sun / (R * au))
+T = s0.fields["gas_T"]
+e = np.max(np.abs(T / T_ref[:, None] - 1))
+checks.check(e <= 1e-12, f"T = T_* (phi/2)^1/4 (R_*/R)^1/2, vertically constant: max relative error {e:.2e} <= 1e-12")
+
+a = s0.data["dust_sizes"]
+e = np.max(np.abs(a / np.geomspace(1e-5, 0.5, len(a)) - 1))
+checks.check(e <= 1e-12, f"dust.sizes_from = log: {len(a)} sizes log-spaced over 1e-5 - 0.5 cm, max relative error {e:.2e}")
+bad = run([exe, "--check", deck, "dust.sizes=[1e-3]"], expect=2)
+checks.check("dust.sizes" in bad.stderr, "a size list together with sizes_from = log is refused, naming dust.sizes")
+share = 0.01 * np.sqrt(a) / np.sum(np.sqrt(a))
+rho_g = s0.fields["gas_rho"]
+disc = rho_g > 10 * 1e-24
+e = max(np.max(np.abs(s0.fields[f"dust_rho_{k}"][disc] / rho_g[disc] / share[k] - 1)) for k in range(len(a)))
+checks.check(e <= 1e-12, f"initial dust: MRN shares of dust-to-gas 0.01 in the gas disc, max relative error {e:.2e} <= 1e-12")
+floor = np.maximum(1e-40, 1e-10 * rho_g[~disc])
+e = max(np.max(np.abs(s0.fields[f"dust_rho_{k}"][~disc] / floor - 1)) for k in range(len(a)))
+checks.check(np.count_nonzero(~disc) > 0 and e <= 1e-12, f"initial dust in the cavity at the floor ({np.count_nonzero(~disc)} cells, {e:.1e})")
+
+h = mote.read_history(os.path.join(full, "history.txt"))
+budget = h["dust_mass"] - h["dust_floor_added"] + h["dust_outflow"]
+e = np.max(np.abs(budget - budget[0])) / h["dust_mass"][0]
+checks.check(e <= 1e-10, f"dust mass budget (mass - floor additions + outflow) closes to {e:.2e} <= 1e-10 over {len(h)} rows")
+checks.check(np.any(h["dust_outflow"] != 0), f"mass crossed the open boundaries (net outflow {h['dust_outflow'][-1]:.3e})")
+moved = sum(abs(h[f"dust_mass_{k}"][-1] - h[f"dust_mass_{k}"][0]) for k in range(len(a))) / h["dust_mass"][0]
+checks.check(h["coagulation_calls"][-1] > 0 and moved > 1e-6,
+             f"coagulation ran ({int(h['coagulation_calls'][-1])} calls) and moved {moved:.2e} of the dust mass between species")
+
+x, y = mote.last_snapshot(full), mote.last_snapshot(split)
+checks.check(x.step == y.step and x.time == y.time, f"both end at step {x.step}, t = {x.time!r} ({y.step}, {y.time!r})")
+diff = [n for n in x.fields if x.fields[n].tobytes() != y.fields[n].tobytes()]
+checks.check(not diff, f"restart: all {len(x.fields)} snapshot fields bit-identical" + (f" (differ: {diff[:5]})" if diff else ""))
+hs = mote.read_history(os.path.join(split, "history.txt"))
+same = all(h[c].tobytes() == hs[c].tobytes() for c in ("step", "dust_mass", "dust_floor_added", "dust_outflow"))
+checks.check(same, "restart: history budget columns identical")
+sys.exit(checks.finish())
