@@ -16,6 +16,7 @@
 
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
+#include "mote/core/loops.hpp"
 #include "mote/disc/disc_simulation.hpp"
 #include "mote/io/problem_main.hpp"
 
@@ -31,6 +32,13 @@ void declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .less_than(1.0)
       .doc("Total initial dust-to-gas ratio, well mixed (RBO24: 0.01).");
+  s.real("transition.dust_R_in")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code length")
+      .doc(
+          "Inner edge of the initial dust, a factor exp[-(dust_R_in / R)^10] on the dust-to-gas ratio (cuDisc's "
+          "steadyTD set-up: 6 au); 0: dust wherever the gas is.");
   s.real("transition.mrn_index")
       .default_value(3.5)
       .doc("q of the initial size distribution n(a) ~ a^-q (MRN: 3.5); mass per log bin ~ a^(4 - q).");
@@ -52,13 +60,28 @@ std::vector<double> mrn_dust_to_gas(const std::vector<double>& sizes, double tot
   return eps;
 }
 
+/// Multiplies the dust densities by exp[-(R_d / R)^10] (the floor is restored by
+/// DustDynamics::initialise_from_primitives).
+void cut_inner_dust(const mesh::Grid& grid, const View<Real****>& W, Real R_d) {
+  auto Rc = grid.Rc;
+  par_for(
+      "transition::inner_dust_edge", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(), 0,
+      static_cast<int>(W.extent(2)),
+      KOKKOS_LAMBDA(int i, int j, int s) { W(i, j, s, disc::kRho) *= math::exp(-math::pow(R_d / Rc(i), Real(10))); });
+}
+
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto sizes = disc::DustSettings::from_deck(d, ctx.units, {}).sizes;
   const auto eps = mrn_dust_to_gas(sizes, d.real("transition.dust_to_gas"), d.real("transition.mrn_index"));
-  return std::make_unique<disc::DiscSimulation>(
-      d, ctx.comm, ctx.units,
-      disc::DiscSimulation::well_mixed(eps, d.real("dust.floor"), kGasFloorMargin * d.real("gas.rho_floor")));
+  const auto mixed =
+      disc::DiscSimulation::well_mixed(eps, d.real("dust.floor"), kGasFloorMargin * d.real("gas.rho_floor"));
+  const double R_d = d.real("transition.dust_R_in");
+  auto initial = [mixed, R_d](const mesh::Grid& grid, const disc::GasFields& gas, const View<Real****>& W) {
+    mixed(grid, gas, W);
+    if (R_d > 0) cut_inner_dust(grid, W, R_d);
+  };
+  return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units, initial);
 }
 
 }  // namespace

@@ -46,6 +46,12 @@ void check_species(const core::Deck& d, core::DeckCheck& check) {
 
 using View4 = View<Real****>;
 
+/// Longest step (over C_adv) for which an acceleration a moves dust with stopping
+/// time t_s by at most dx: a dt^2 <= dx while dt < t_s, a t_s dt <= dx beyond.
+KOKKOS_INLINE_FUNCTION Real source_step_limit(Real dx, Real a, Real ts) {
+  return math::max(math::sqrt(dx / a), dx / (a * ts));
+}
+
 /// MDRange over (i, j, s) in [i0, i1) x [j0, j1) x [0, ns).
 template <class F>
 void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, const F& f) {
@@ -447,8 +453,10 @@ double DustDynamics::max_dt() const {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto W_ = W;
   auto dR = grid_.dR, Rc = grid_.Rc, tan_te = grid_.tan_te;
-  auto nu = gas_.nu, rho_g = gas_.rho;
-  auto sc = schmidt_;
+  auto nu = gas_.nu, rho_g = gas_.rho, cs2 = gas_.cs2;
+  auto sc = schmidt_, sizes = sizes_;
+  const Real rho_m = settings_.rho_grain;
+  const bool drag = settings_.drag;
   const Real ca = settings_.cfl_advection, cd = settings_.cfl_diffusion;
   const Real floor = settings_.floor, floor_ratio = settings_.floor_ratio;
   const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
@@ -472,15 +480,19 @@ double DustDynamics::max_dt() const {
         if (radial && vR > 0) m = math::min(m, ca * dR(i) / vR);
         if (vZ > 0) m = math::min(m, ca * dZ / vZ);
         if (gravity) {
-          // Explicit sources (eq. 6): the displacement a dt^2 stays below a cell
-          // (not in eq. 18; it matters when the dust starts at rest or decoupled).
+          // Explicit sources (eq. 6; not in eq. 18, it matters when the dust starts at
+          // rest or decoupled): a step moves the dust by about a dt min(dt, t_s), the
+          // implicit drag capping its velocity at the terminal a t_s; this stays below
+          // C_adv of a cell.
           Real aR, aZ;
           star.acceleration(Rc(i), Zc(i, j), aR, aZ);
           if (curvature) aR += math::square(W_(i, j, s, kVphi)) / Rc(i);
           aR = math::fabs(aR);
           aZ = math::fabs(aZ);
-          if (radial && aR > 0) m = math::min(m, ca * math::sqrt(dR(i) / aR));
-          if (aZ > 0) m = math::min(m, ca * math::sqrt(dZ / aZ));
+          const Real ts =
+              drag ? dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j))) : Real(1e300);
+          if (radial && aR > 0) m = math::min(m, ca * source_step_limit(dR(i), aR, ts));
+          if (aZ > 0) m = math::min(m, ca * source_step_limit(dZ, aZ, ts));
         }
       },
       Kokkos::Min<Real>(dt));

@@ -9,7 +9,8 @@ Checks:
   * gas T = T_* (phi/2)^1/4 (R_*/R)^1/2 with phi = 0.05, R_* = 1.7 R_sun,
     T_* = 4500 K (DustPy's mid-plane temperature), vertically constant, 1e-12;
   * initial dust-to-gas ratio per species = the MRN share 0.01 a^0.5 / sum a^0.5
-    wherever the gas is above 10 x its floor, 1e-12; floor dust elsewhere;
+    times exp[-(6 au/R)^10] (at least the floor) wherever the gas is above 10 x
+    its floor, 1e-12; floor dust elsewhere;
   * mass budget: sum_s M_s - floor_added + outflow equals its initial value to
     1e-10 of the dust mass on every history row; the coagulation ran and moved
     mass between species;
@@ -54,12 +55,14 @@ bad = run([exe, "--check", deck, "dust.sizes=[1e-3]"], expect=2)
 checks.check("dust.sizes" in bad.stderr, "a size list together with sizes_from = log is refused, naming dust.sizes")
 share = 0.01 * np.sqrt(a) / np.sum(np.sqrt(a))
 rho_g = s0.fields["gas_rho"]
-disc = rho_g > 10 * 1e-24
-e = max(np.max(np.abs(s0.fields[f"dust_rho_{k}"][disc] / rho_g[disc] / share[k] - 1)) for k in range(len(a)))
-checks.check(e <= 1e-12, f"initial dust: MRN shares of dust-to-gas 0.01 in the gas disc, max relative error {e:.2e} <= 1e-12")
-floor = np.maximum(1e-40, 1e-10 * rho_g[~disc])
-e = max(np.max(np.abs(s0.fields[f"dust_rho_{k}"][~disc] / floor - 1)) for k in range(len(a)))
-checks.check(np.count_nonzero(~disc) > 0 and e <= 1e-12, f"initial dust in the cavity at the floor ({np.count_nonzero(~disc)} cells, {e:.1e})")
+edge = np.exp(-((6.0 / R) ** 10))[:, None]  # transition.dust_R_in = 6 au
+floor = np.maximum(1e-40, 1e-10 * rho_g)
+expected = [np.where(rho_g > 10 * 1e-24, np.maximum(share[k] * rho_g * edge, floor), floor) for k in range(len(a))]
+e = max(np.max(np.abs(s0.fields[f"dust_rho_{k}"] / expected[k] - 1)) for k in range(len(a)))
+n_disc, n_floor = np.count_nonzero(expected[0] > floor), np.count_nonzero(expected[0] == floor)
+checks.check(e <= 1e-12 and n_disc > 0 and n_floor > 0,
+             f"initial dust: MRN shares of dust-to-gas 0.01 x exp[-(6 au/R)^10] in {n_disc} cells, the floor in {n_floor}:"
+             f" max relative error {e:.2e} <= 1e-12")
 
 h = mote.read_history(os.path.join(full, "history.txt"))
 budget = h["dust_mass"] - h["dust_floor_added"] + h["dust_outflow"]
