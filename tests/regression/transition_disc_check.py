@@ -8,6 +8,7 @@ Checks:
   * gas Sigma = Sigma_0 (R/au)^-1 exp[-(5 au/R)^10] (floored), relative 1e-12;
   * gas T = T_* (phi/2)^1/4 (R_*/R)^1/2 with phi = 0.05, R_* = 1.7 R_sun,
     T_* = 4500 K (DustPy's mid-plane temperature), vertically constant, 1e-12;
+  * gas v_R = 0 (gas.radial_velocity = "zero");
   * initial dust-to-gas ratio per species = the MRN share 0.01 a^0.5 / sum a^0.5
     times exp[-(6 au/R)^10] (at least the floor) wherever the gas is above 10 x
     its floor, 1e-12; floor dust elsewhere;
@@ -48,6 +49,8 @@ T = s0.fields["gas_T"]
 e = np.max(np.abs(T / T_ref[:, None] - 1))
 checks.check(e <= 1e-12, f"T = T_* (phi/2)^1/4 (R_*/R)^1/2, vertically constant: max relative error {e:.2e} <= 1e-12")
 
+vR = s0.fields["gas_vR"]
+checks.check(np.all(vR == 0), f"gas.radial_velocity = zero: gas v_R = 0 in all {vR.size} cells")
 a = s0.data["dust_sizes"]
 e = np.max(np.abs(a / np.geomspace(1e-5, 0.5, len(a)) - 1))
 checks.check(e <= 1e-12, f"dust.sizes_from = log: {len(a)} sizes log-spaced over 1e-5 - 0.5 cm, max relative error {e:.2e}")
