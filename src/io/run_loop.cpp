@@ -50,6 +50,20 @@ constexpr double kDefaultDtMinFraction = 1e-12;
 
 double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+/// output.snapshot_times: increasing, and not together with output.snapshot_dt.
+void check_snapshot_times(const core::Deck& d, core::DeckCheck& check) {
+  const auto& times = d.real_array("output.snapshot_times");
+  if (times.empty()) return;
+  if (d.real("output.snapshot_dt") > 0.0)
+    check.fail("output.snapshot_times", "cannot be combined with " + check.quote("output.snapshot_dt"));
+  for (std::size_t k = 1; k < times.size(); ++k)
+    if (!(times[k] > times[k - 1])) {
+      check.fail("output.snapshot_times",
+                 logging::cat("must increase (element ", k, " is not above element ", k - 1, ")"));
+      return;
+    }
+}
+
 }  // namespace
 
 void RunSettings::declare(core::DeckSchema& schema) {
@@ -104,7 +118,16 @@ void RunSettings::declare(core::DeckSchema& schema) {
       .default_value(0.0)
       .unit("code time")
       .min(0.0)
-      .doc("Time between snapshots; 0 = initial and final only.");
+      .doc("Time between snapshots; 0 = initial and final only (or output.snapshot_times).");
+  schema.real_array("output.snapshot_times")
+      .restart_mutable()
+      .default_value(std::vector<double>{})
+      .unit("code time")
+      .greater_than(0.0)
+      .doc(
+          "Times of the snapshots after the initial one, increasing (e.g. logarithmic in time); the final snapshot "
+          "at run.t_end is always written. Excludes output.snapshot_dt.");
+  schema.rule(check_snapshot_times);
   schema.integer("output.checkpoint_every")
       .restart_mutable()
       .int64()
@@ -153,6 +176,7 @@ RunSettings RunSettings::from_deck(const core::Deck& deck) {
   s.output_dir = deck.string("output.dir");
   s.overwrite = deck.boolean("output.overwrite");
   s.snapshot_dt = deck.real("output.snapshot_dt");
+  s.snapshot_times = deck.real_array("output.snapshot_times");
   s.checkpoint_every = deck.integer("output.checkpoint_every");
   s.checkpoint_wall = deck.real("output.checkpoint_wall");
   s.checkpoints_kept = deck.integer("output.checkpoints_kept");
@@ -175,6 +199,12 @@ RunLoop::RunLoop(RunSettings settings, std::string problem, const core::Deck& de
       timers_(timers) {}
 
 double RunLoop::next_snapshot_time(const State& s) const {
+  const auto& times = settings_.snapshot_times;
+  if (!times.empty()) {
+    // next_output = k >= 1 is the k-th listed time; past the list (or t_end), the final snapshot.
+    const auto k = static_cast<std::size_t>(s.next_output);
+    return k >= 1 && k <= times.size() ? std::min(settings_.t_end, times[k - 1]) : settings_.t_end;
+  }
   if (settings_.snapshot_dt <= 0.0) return settings_.t_end;
   return std::min(settings_.t_end, static_cast<double>(s.next_output) * settings_.snapshot_dt);
 }

@@ -100,6 +100,38 @@ TEST_F(RunLoopTest, SnapshotsLandExactlyOnOutputTimes) {
   for (const auto& e : fs::directory_iterator(dir_)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
 }
 
+TEST_F(RunLoopTest, SnapshotTimesListLandsOnEachAndTheEnd) {
+  Decay sim;
+  EXPECT_EQ(run(sim, {"output.snapshot_dt=0", "output.snapshot_times=[0.01, 0.1, 0.55]"}), core::kExitFinished);
+  const double expected[] = {0.0, 0.01, 0.1, 0.55, 1.0};
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(snapshot_time(i), expected[i]);
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 5, "h5")));
+}
+
+TEST_F(RunLoopTest, SnapshotTimesAcrossARestart) {
+  const std::vector<std::string> times = {"output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4, 0.7]"};
+  Decay first;
+  auto stopped = times;
+  stopped.push_back("run.max_steps=10");  // t = 0.28: after the snapshot at 0.1
+  ASSERT_EQ(run(first, stopped), core::kExitStepLimit);
+  Decay resumed;
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  ASSERT_EQ(run(resumed, times, *checkpoint), core::kExitFinished);
+  // The stop at the step limit (t = 0.28) writes its own snapshot; the listed times follow it.
+  const double expected[] = {0.0, 0.1, 0.28, 0.4, 0.7, 1.0};
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(snapshot_time(i), expected[i], i == 2 ? 1e-12 : 0.0);
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 6, "h5")));
+}
+
+TEST_F(RunLoopTest, BadSnapshotTimesAreRefused) {
+  Decay sim;
+  EXPECT_THROW(run(sim, {"output.snapshot_times=[0.5, 0.2]", "output.snapshot_dt=0"}), core::InputError);
+  EXPECT_THROW(run(sim, {"output.snapshot_times=[0.1, 0.2]"}), core::InputError);  // with snapshot_dt = 0.25
+  EXPECT_THROW(run(sim, {"output.snapshot_times=[0.0, 0.2]", "output.snapshot_dt=0"}), core::InputError);
+  EXPECT_EQ(sim.steps, 0);
+}
+
 TEST_F(RunLoopTest, RestartIsBitIdentical) {
   Decay full;
   ASSERT_EQ(run(full, {}), core::kExitFinished);

@@ -16,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
@@ -36,10 +37,11 @@ struct RunSettings {
   double progress_interval = 2.0;  // wall seconds between progress lines
   std::string units = "dimensionless";
   std::string output_dir = "output";
-  bool overwrite = false;          // a fresh run may delete an earlier run's files in output_dir
-  double snapshot_dt = 0.0;        // 0: first and last snapshot only
-  long long checkpoint_every = 0;  // steps; 0: only at the end and on signals
-  double checkpoint_wall = 0.0;    // wall seconds; 0: off
+  bool overwrite = false;              // a fresh run may delete an earlier run's files in output_dir
+  double snapshot_dt = 0.0;            // 0: first and last snapshot only
+  std::vector<double> snapshot_times;  // explicit snapshot times (excludes snapshot_dt)
+  long long checkpoint_every = 0;      // steps; 0: only at the end and on signals
+  double checkpoint_wall = 0.0;        // wall seconds; 0: off
   long long checkpoints_kept = 2;
   long long history_every = 1;
   bool hdf5_snapshots = true;  // snapshot_NNNNN.h5 + .xmf
