@@ -1,0 +1,349 @@
+#!/usr/bin/env python3
+"""Check a transition_disc run (RBO24 sec. 7, VALIDATION F1) and draw its figures.
+
+    check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--trap-cells 2]
+             [--frag-factor 2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
+             [--iso-T-ref 159.1]
+
+Everything is computed here from the snapshots and the history, independently
+of the C++ code. Grid: cell centres R_i, Z_ij = R_i tan theta_j, column widths
+dZ_ij = R_i (tan theta_j+1/2 - tan theta_j-1/2); both hemispheres (the grid
+holds the upper one). For species s of size a_s:
+    Sigma_s(R) = 2 sum_j rho_s dZ,   sigma_d(m_s, R) = Sigma_s / dln m   (eq. 70)
+(the mass-grid independent density: m d(rho)/dm integrated over Z).
+
+Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
+  * steady state: the mass-weighted change of sigma_d(m, R) between the last
+    two snapshots, per dex of time, sum |d sigma| / sum sigma / dlog10 t
+    <= --steady-tol (needs two snapshots after 1e5 yr to be meaningful);
+  * dust trap: the radius of the peak of the total Sigma_d lies within
+    --trap-cells cells of the mid-plane gas pressure maximum (rho_g c_s^2);
+  * fragmentation-limited growth: in every cell of the trap (Sigma_d above
+    half its peak) the size at the peak of sigma_d(m) lies within a factor
+    --frag-factor of the Birnstiel et al. (2012) fragmentation limit
+        a_frag = f_f (2 / 3 pi) Sigma_g v_frag^2 / (rho_m alpha c_s^2), f_f = 0.37,
+    with the local mid-plane c_s; for v_frag >= 1000 cm/s also the drift limit
+        a_drift = f_d (2 Sigma_d / pi rho_m) (v_K / c_s)^2 |dln P / dln R|^-1, f_d = 0.55,
+    outside the trap, where a_drift < a_frag: peak within the same factor of
+    min(a_frag, a_drift);
+  * settling: at --radius (au) for three sizes (about 0.5, 50 and 150 um, or the
+    largest grown size), the dust scale height sqrt(<Z^2>) of the column agrees
+    with h_g (alpha / (alpha + St))^1/2 (h_g = c_s / Omega_K, St = t_s Omega_K
+    at the mid-plane, Takeuchi & Lin 2002) within --settle-tol; reported: the
+    species whose density at one gas scale height exceeds its mid-plane value
+    (the intermediate-size enhancement of RBO24 sec. 7.1);
+  * mass: dust_mass - dust_floor_added + dust_outflow of the history stays at
+    its initial value to --mass-tol of the dust mass on every row;
+  * non-isothermal runs (a [radiation] table): a super-heated surface layer,
+    max over theta of T above the blackbody equilibrium T_* (R_* / 2R)^1/2 at
+    every radius beyond the 5 au cavity, and a cooler interior, the mid-plane T
+    of the trap below the isothermal run's --iso-T-ref (R/au)^-1/2 (RBO24 at
+    1 Myr: the settled, grown dust shades the mid-plane).
+
+--plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
+sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
+--radius), fig15_sigma_mR.png (sigma_d(m, R) with the fragmentation and drift
+limits; Fig. 19 for v_frag = 1000), fig16_heights.png (size distributions at
+1, 2, 3 h_g), fig17_vertical.png (three sizes against Takeuchi & Lin; Fig. 20).
+Prints 'N passed, M failed'; exits non-zero on failure.
+"""
+import argparse
+import os
+import sys
+import tomllib
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import mote  # noqa: E402
+from mote.verdict import Verdict  # noqa: E402
+
+YEAR_S = 3.15576e7
+F_FRAG, F_DRIFT = 0.37, 0.55  # Birnstiel, Klahr & Ercolano (2012), eq. 8 and 18
+
+
+class Disc:
+    """One snapshot in cgs: geometry, gas, and rho[s, i, j] of every species."""
+
+    def __init__(self, snap):
+        deck = tomllib.loads(snap.deck)
+        u = snap.units
+        L, M, T = u["length_cm"], u["mass_g"], u["time_s"]
+        g = mote.gas_state(snap)
+        self.time_yr = snap.time * T / YEAR_S
+        self.R = g["R_c"] * L
+        self.tan_te = g["tan_te"]
+        self.R_nodes, self.Z_nodes = np.asarray(snap.x_nodes) * L, np.asarray(snap.y_nodes) * L
+        self.Z = self.R[:, None] * np.tan(g["theta_c"])[None, :]
+        self.dZ = self.R[:, None] * np.diff(self.tan_te)[None, :]
+        self.a = np.asarray(snap.data["dust_sizes"])
+        ns = len(self.a)
+        rho_unit = M / L**3
+        self.rho = np.array([snap.fields[f"dust_rho_{s}"] for s in range(ns)]) * rho_unit
+        self.ts = np.array([snap.fields[f"dust_ts_{s}"] for s in range(ns)]) * T
+        self.rho_g = snap.fields["gas_rho"] * rho_unit
+        self.cs2 = snap.fields["gas_cs2"] * (L / T) ** 2
+        self.T_gas = snap.fields["gas_T"]
+        self.Sigma_g = snap.data["gas_Sigma"] * M / L**2
+        self.Omega = np.sqrt(snap.data["GM"][0] * L**3 / T**2 / self.R**3)
+        self.alpha = deck["gas"]["alpha"]
+        self.rho_m = deck["dust"].get("rho_grain", 1.0)
+        self.v_frag = deck.get("coagulation", {}).get("v_frag", 0.0)
+        self.dlnm = 3.0 * np.log(self.a[1] / self.a[0]) if ns > 1 else 1.0
+        self.Sigma_s = 2.0 * np.sum(self.rho * self.dZ[None], axis=2)  # (ns, nr)
+        self.sigma_m = self.Sigma_s / self.dlnm
+        self.h_g = np.sqrt(self.cs2[:, 0]) / self.Omega
+        self.radiation = deck.get("radiation")
+
+    def pressure_mid(self):
+        return self.rho_g[:, 0] * self.cs2[:, 0]
+
+    def a_frag(self):
+        return F_FRAG * 2.0 / (3.0 * np.pi) * self.Sigma_g * self.v_frag**2 / (self.rho_m * self.alpha * self.cs2[:, 0])
+
+    def a_drift(self):
+        P = self.pressure_mid()
+        dlnP = np.abs(np.gradient(np.log(P), np.log(self.R)))
+        vk2 = (self.Omega * self.R) ** 2
+        Sd = np.sum(self.Sigma_s, axis=0)
+        return F_DRIFT * 2.0 * Sd / (np.pi * self.rho_m) * vk2 / self.cs2[:, 0] / np.maximum(dlnP, 1e-300)
+
+    def peak_size(self):
+        return self.a[np.argmax(self.sigma_m, axis=0)]
+
+    def column(self, radius_au):
+        return int(np.argmin(np.abs(self.R / 1.495978707e13 - radius_au)))
+
+
+def check_steady(v, discs, tol):
+    if len(discs) < 2:
+        v.check(False, "steady state: needs two snapshots")
+        return
+    old, new = discs[-2], discs[-1]
+    if old.time_yr <= 0:
+        v.check(False, "steady state: needs two snapshots after t = 0")
+        return
+    dex = np.log10(new.time_yr / old.time_yr)
+    change = np.sum(np.abs(new.sigma_m - old.sigma_m)) / np.sum(new.sigma_m) / dex
+    v.check(change <= tol,
+            f"steady state: sigma_d(m, R) changed by {change:.3g} per dex of time between "
+            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (mass-weighted) <= {tol:g}")
+
+
+def trap_cells(d):
+    Sd = np.sum(d.Sigma_s, axis=0)
+    return np.nonzero(Sd >= 0.5 * Sd.max())[0]
+
+
+def check_trap(v, d, cells):
+    iP = int(np.argmax(d.pressure_mid()[1:-1])) + 1
+    iD = int(np.argmax(np.sum(d.Sigma_s, axis=0)))
+    au = 1.495978707e13
+    v.check(abs(iD - iP) <= cells,
+            f"dust trap: Sigma_d peaks at {d.R[iD] / au:.3f} au, {abs(iD - iP)} cells from the pressure maximum at "
+            f"{d.R[iP] / au:.3f} au (<= {cells})")
+
+
+def check_growth_limits(v, d, factor):
+    if d.v_frag <= 0:
+        v.info("growth limits: no coagulation.v_frag in the deck")
+        return
+    peak, af, ad = d.peak_size(), d.a_frag(), d.a_drift()
+    trap = trap_cells(d)
+    ratio = peak[trap] / af[trap]
+    worst = ratio[np.argmax(np.abs(np.log(ratio)))]
+    v.check(np.all(np.abs(np.log(ratio)) <= np.log(factor)),
+            f"fragmentation limit: in the {len(trap)} trap cells the sigma_d(m) peak / a_frag lies in "
+            f"[{ratio.min():.3g}, {ratio.max():.3g}] (worst {worst:.3g}; within a factor {factor:g})")
+    if d.v_frag >= 1000:
+        outside = np.setdiff1d(np.nonzero(ad < af)[0], trap)
+        if len(outside) == 0:
+            v.info("drift limit: no cell outside the trap with a_drift < a_frag")
+            return
+        r = peak[outside] / np.minimum(af, ad)[outside]
+        v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
+                f"drift limit: in the {len(outside)} drift-limited cells outside the trap the peak / min(a_frag, "
+                f"a_drift) lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
+
+
+def settling_species(d, i):
+    """Three sizes of Fig. 17: nearest to 0.5, 50, 150 um, capped at the grown peak at column i."""
+    top = np.argmax(d.sigma_m[:, i])
+    picks = [int(np.argmin(np.abs(np.log(d.a / a)))) for a in (0.5e-4, 50e-4, 150e-4)]
+    return sorted({min(p, top) for p in picks})
+
+
+def scale_heights(d, i, s):
+    w = d.rho[s, i] * d.dZ[i]
+    h_d = np.sqrt(np.sum(w * d.Z[i] ** 2) / np.sum(w))
+    St = d.ts[s, i, 0] * d.Omega[i]
+    return h_d, d.h_g[i] * np.sqrt(d.alpha / (d.alpha + St)), St
+
+
+def check_settling(v, d, radius, tol):
+    i = d.column(radius)
+    for s in settling_species(d, i):
+        h_d, h_ref, St = scale_heights(d, i, s)
+        e = abs(h_d / h_ref - 1)
+        v.check(e <= tol,
+                f"settling at {d.R[i] / 1.495978707e13:.2f} au, a = {d.a[s] * 1e4:.3g} um (St {St:.2e}): "
+                f"h_d / h_g = {h_d / d.h_g[i]:.3f} against (alpha / (alpha + St))^1/2 = {h_ref / d.h_g[i]:.3f}, "
+                f"relative {e:.3f} <= {tol:g}")
+    j1 = int(np.argmin(np.abs(d.Z[i] - d.h_g[i])))
+    up = [s for s in range(len(d.a)) if d.rho[s, i, j1] > d.rho[s, i, 0]]
+    sizes = ", ".join(f"{d.a[s] * 1e4:.3g}" for s in up) or "none"
+    v.info(f"intermediate-size enhancement at {d.R[i] / 1.495978707e13:.2f} au: species denser at Z = 1 h_g than at "
+           f"the mid-plane: {sizes} um")
+
+
+def check_temperature(v, d, T_ref):
+    """Non-isothermal run: the surface layer above the blackbody equilibrium T_* (R_* / 2 R)^1/2 at every radius of
+    the gas disc (R > the cavity's 5 au), and the mid-plane of the trap below the isothermal run's T_ref (R/au)^-1/2."""
+    R_sun, au = 6.957e10, 1.495978707e13
+    T_star, R_star = d.radiation.get("star_T_eff", 4500.0), d.radiation.get("star_radius", 1.7) * R_sun
+    disc = np.nonzero(d.R / au > 5.0)[0]
+    ratio = d.T_gas[disc].max(axis=1) / (T_star * np.sqrt(R_star / (2 * d.R[disc])))
+    v.check(np.all(ratio > 1),
+            f"super-heated surface: max_theta T / T_bb(R) over the {len(disc)} radii beyond 5 au lies in "
+            f"[{ratio.min():.3f}, {ratio.max():.3f}] (> 1; T_bb = T_* (R_* / 2R)^1/2)")
+    trap = trap_cells(d)
+    cool = d.T_gas[trap, 0] / (T_ref * (d.R[trap] / au) ** -0.5)
+    v.check(np.all(cool < 1),
+            f"cooler interior: mid-plane T / T_isothermal in the {len(trap)} trap cells lies in "
+            f"[{cool.min():.3f}, {cool.max():.3f}] (< 1; RBO24 at 1 Myr, after settling and growth)")
+
+
+def check_mass(v, run_dir, tol):
+    h = mote.read_history(os.path.join(run_dir, "history.txt"))
+    kept = h["dust_mass"] - h["dust_floor_added"] + h["dust_outflow"]
+    e = np.max(np.abs(kept - kept[0])) / h["dust_mass"][0]
+    v.check(e <= tol, f"mass: dust_mass - floor_added + outflow constant to {e:.2e} of the dust mass over "
+                      f"{len(kept)} history rows (<= {tol:g})")
+    v.info(f"mass: {h['dust_outflow'][-1] / h['dust_mass'][0]:.3g} of the initial dust left through the boundaries, "
+           f"the floor added {h['dust_floor_added'][-1] / h['dust_mass'][0]:.3g}")
+
+
+def plot(d, out, radius):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    au = 1.495978707e13
+    os.makedirs(out, exist_ok=True)
+    i = d.column(radius)
+    picks = settling_species(d, i)
+    Rn, Zn = d.R_nodes / au, d.Z_nodes / au
+    title = f"t = {d.time_yr:.3g} yr, v_frag = {d.v_frag:g} cm/s"
+
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.5 * len(picks), 3.6), squeeze=False)
+    for ax, s in zip(axes[0], picks):
+        m = ax.pcolormesh(Rn, Zn, np.log10(np.maximum(d.rho[s], 1e-40)), shading="flat",
+                          vmin=np.log10(d.rho[s].max()) - 8, vmax=np.log10(d.rho[s].max()))
+        fig.colorbar(m, ax=ax, label="log10 rho_d [g cm^-3]")
+        ax.set(xlabel="R [au]", ylabel="Z [au]", title=f"a = {d.a[s] * 1e4:.3g} um", ylim=(0, 0.3 * Rn.max()))
+    fig.suptitle("Fig. 12: " + title)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig12_dust_2d.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    m = ax.pcolormesh(Rn, Zn, d.T_gas, shading="flat")
+    fig.colorbar(m, ax=ax, label="T [K]")
+    ax.set(xlabel="R [au]", ylabel="Z [au]", title="Fig. 13: " + title, ylim=(0, 0.3 * Rn.max()))
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig13_temperature.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    ax.loglog(d.a, d.sigma_m[:, i], "o-", ms=3)
+    ax.axvline(d.a_frag()[i], ls="--", c="k", label="a_frag (BKE12)")
+    ax.set(xlabel="a [cm]", ylabel="sigma_d(m) [g cm^-2]", title=f"Fig. 14: {d.R[i] / au:.2f} au, " + title)
+    ax.set_ylim(d.sigma_m[:, i].max() * 1e-6, d.sigma_m[:, i].max() * 3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig14_sigma_m.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    top = np.log10(d.sigma_m.max())
+    m = ax.pcolormesh(d.R / au, d.a, np.log10(np.maximum(d.sigma_m, 1e-300)), shading="auto", vmin=top - 6,
+                      vmax=top)
+    fig.colorbar(m, ax=ax, label="log10 sigma_d(m) [g cm^-2]")
+    ax.plot(d.R / au, d.a_frag(), "w-", label="fragmentation limit")
+    ax.plot(d.R / au, d.a_drift(), "w--", label="drift limit")
+    ax.set(xscale="log", yscale="log", xlabel="R [au]", ylabel="a [cm]", ylim=(d.a[0], d.a[-1]),
+           title=("Fig. 19: " if d.v_frag >= 1000 else "Fig. 15: ") + title)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig15_sigma_mR.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    for k in range(4):
+        j = int(np.argmin(np.abs(d.Z[i] - k * d.h_g[i])))
+        ax.loglog(d.a, d.rho[:, i, j] / d.dlnm, label=f"Z = {k} h_g")
+    ax.set(xlabel="a [cm]", ylabel="m drho/dm [g cm^-3]", title=f"Fig. 16: {d.R[i] / au:.2f} au")
+    peak = (d.rho[:, i, 0] / d.dlnm).max()
+    ax.set_ylim(peak * 1e-8, peak * 3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig16_heights.png"), dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.5 * len(picks), 3.6), squeeze=False)
+    z = d.Z[i] / d.h_g[i]
+    for ax, s in zip(axes[0], picks):
+        St = d.ts[s, i, 0] * d.Omega[i]
+        tl = np.exp(-St / d.alpha * (np.exp(z**2 / 2) - 1) - z**2 / 2)  # Takeuchi & Lin (2002) eq. 19, Sc = 1
+        tl *= np.sum(d.rho[s, i] * d.dZ[i]) / np.sum(tl * d.dZ[i])
+        ax.semilogy(z, d.rho[s, i], "o", ms=3, label="mote")
+        ax.semilogy(z, tl, "-", label="Takeuchi & Lin")
+        ax.set(xlabel="Z / h_g", ylabel="rho_d [g cm^-3]", title=f"a = {d.a[s] * 1e4:.3g} um, St = {St:.1e}",
+               xlim=(0, 5), ylim=(d.rho[s, i].max() * 1e-6, d.rho[s, i].max() * 3))
+        ax.legend(fontsize=8)
+    fig.suptitle(("Fig. 20: " if d.v_frag >= 1000 else "Fig. 17: ") + f"{d.R[i] / au:.2f} au, " + title)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig17_vertical.png"), dpi=110)
+    plt.close(fig)
+    print(f"figures in {out}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("run_dir")
+    p.add_argument("--plot", metavar="DIR")
+    p.add_argument("--steady-tol", type=float, default=0.1)
+    p.add_argument("--trap-cells", type=int, default=2)
+    p.add_argument("--frag-factor", type=float, default=2.0)
+    p.add_argument("--settle-tol", type=float, default=0.3)
+    p.add_argument("--radius", type=float, default=6.0, help="au, for Fig. 14, 16, 17 and the settling check")
+    p.add_argument("--mass-tol", type=float, default=1e-10)
+    p.add_argument("--iso-T-ref", type=float, default=159.1000339385544,
+                   help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
+    args = p.parse_args()
+    paths = mote.list_snapshots(args.run_dir)
+    if not paths:
+        print(f"no snapshots in {args.run_dir}")
+        return 1
+    discs = [Disc(mote.read_snapshot(q)) for q in paths[-2:]]
+    d = discs[-1]
+    print(f"{args.run_dir}: last snapshot at t = {d.time_yr:.4g} yr, {len(d.R)} x {d.Z.shape[1]} cells, "
+          f"{len(d.a)} species")
+    v = Verdict()
+    check_steady(v, discs, args.steady_tol)
+    check_trap(v, d, args.trap_cells)
+    check_growth_limits(v, d, args.frag_factor)
+    check_settling(v, d, args.radius, args.settle_tol)
+    check_mass(v, args.run_dir, args.mass_tol)
+    if d.radiation:
+        check_temperature(v, d, args.iso_T_ref)
+    else:
+        v.info("isothermal run: the non-isothermal checks (super-heated surface, cooler interior) need [radiation]")
+    if args.plot:
+        plot(d, args.plot, args.radius)
+    return v.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

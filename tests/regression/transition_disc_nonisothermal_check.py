@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""The non-isothermal transition disc of RBO24 sec. 7 on its CI deck (issue 20):
+dust dynamics, coagulation and the temperature solver (stellar irradiation +
+multi-band FLD) on the driver's schedule (sec. 6).
+
+usage: transition_disc_nonisothermal_check.py EXE WORKDIR DECK
+Checks:
+  * the temperature solver ran on its adaptive schedule (more than one call, and
+    fewer than the steps), the log lists it with its wall time;
+  * problems/transition_disc/check.py on the output: the super-heated surface
+    layer (max over theta of T above T_* (R_*/2R)^1/2 beyond 5 au) and the dust
+    mass budget (1e-10) pass;
+  * a run stopped after 40 steps and restarted ends bit-identical to one run in
+    every snapshot field (T and the radiation energy included) and in the
+    history's schedule columns (calls of each sub-solver, temperature updates).
+"""
+import os
+import shutil
+import sys
+
+from harness import Checks, run
+import mote
+
+exe, work, deck = sys.argv[1], sys.argv[2], sys.argv[3]
+shutil.rmtree(work, ignore_errors=True)
+full, split = os.path.join(work, "full"), os.path.join(work, "split")
+p = run([exe, deck, f"output.dir={full}"])
+checks = Checks()
+checks.check("driver: temperature" in p.stdout, "the log lists the temperature solver's calls and wall time")
+run([exe, deck, f"output.dir={split}", "run.max_steps=40"])
+q = run([exe, "--restart", "latest", deck, f"output.dir={split}"])
+checks.check("restarted from" in q.stdout, "the second part restarted from a checkpoint")
+
+h = mote.read_history(os.path.join(full, "history.txt"))
+calls, steps = int(h["temperature_calls"][-1]), int(h["step"][-1])
+checks.check(1 < calls < steps, f"temperature on its adaptive schedule: {calls} calls in {steps} steps")
+
+check_py = os.path.join(os.path.dirname(deck), "check.py")
+c = run([sys.executable, check_py, full], expect=None)
+for line in ("PASS super-heated surface", "PASS mass:"):
+    found = [x for x in c.stdout.splitlines() if x.startswith(line)]
+    checks.check(bool(found), f"check.py: {found[0] if found else line + ' (missing)'}")
+
+x, y = mote.last_snapshot(full), mote.last_snapshot(split)
+checks.check(x.step == y.step and x.time == y.time, f"both end at step {x.step}, t = {x.time!r} ({y.step}, {y.time!r})")
+diff = [n for n in x.fields if x.fields[n].tobytes() != y.fields[n].tobytes()]
+checks.check(not diff and "gas_T" in x.fields and "rad_E" in x.fields,
+             f"restart: all {len(x.fields)} snapshot fields bit-identical, gas_T and rad_E included" +
+             (f" (differ: {diff[:5]})" if diff else ""))
+hs = mote.read_history(os.path.join(split, "history.txt"))
+cols = ["step", "time", "temperature_calls", "temperature_updates", "coagulation_calls", "dust_mass"]
+same = [c for c in cols if h[c].tobytes() != hs[c].tobytes()]
+checks.check(not same, "restart: history schedule columns identical (" + ", ".join(cols) + ")" +
+             (f"; differ: {same}" if same else ""))
+sys.exit(checks.finish())
