@@ -388,6 +388,8 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
   s.next_output = file.read_attribute_int("/", "next_output");
+  // A restart may change the snapshot cadence: skip the output times it has already passed.
+  while (next_snapshot_time(s) <= s.time && next_snapshot_time(s) < settings_.t_end) s.next_output += 1;
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);

@@ -124,6 +124,19 @@ TEST_F(RunLoopTest, SnapshotTimesAcrossARestart) {
   EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 6, "h5")));
 }
 
+TEST_F(RunLoopTest, RestartWithAChangedCadenceSkipsPassedTimes) {
+  Decay first;
+  ASSERT_EQ(run(first, {"output.snapshot_dt=0.5", "run.max_steps=25"}), core::kExitStepLimit);  // t = 0.74
+  Decay resumed;
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  ASSERT_EQ(run(resumed, {"output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.3, 0.9]"}, *checkpoint),
+            core::kExitFinished);
+  EXPECT_EQ(resumed.steps, first.steps + 10);  // 0.74 -> 0.9 -> 1.0 in steps of 0.03, never backwards
+  const double expected[] = {0.0, 0.5, 0.74, 0.9, 1.0};
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(snapshot_time(i), expected[i], i == 2 ? 1e-12 : 0.0);
+}
+
 TEST_F(RunLoopTest, BadSnapshotTimesAreRefused) {
   Decay sim;
   EXPECT_THROW(run(sim, {"output.snapshot_times=[0.5, 0.2]", "output.snapshot_dt=0"}), core::InputError);
