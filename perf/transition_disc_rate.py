@@ -68,15 +68,15 @@ def prepare(run_dir, source):
 def one_run(args, tmp, k):
     run_dir = os.path.join(tmp, f"run{k}")
     checkpoint = prepare(run_dir, args.from_dir)
-    start_step = 0
+    start_step, start_time = 0, 0.0
     if checkpoint:
         import h5py
 
         with h5py.File(checkpoint, "r") as f:
-            start_step = int(f.attrs["step"])
+            start_step, start_time = int(f.attrs["step"]), float(f.attrs["time"])
     cmd = ["mpirun", "--oversubscribe", "-np", str(args.ranks)] if args.ranks > 1 else []
     cmd += [args.exe] + (["--restart", checkpoint] if checkpoint else []) + [args.deck, f"output.dir={run_dir}"]
-    cmd += [f"run.max_steps={start_step + args.steps}", f"output.history_every={args.steps}",
+    cmd += [f"run.max_steps={start_step + args.steps}", "output.history_every=1",
             "output.checkpoint_wall=0", "run.progress_interval=1e9"]
     if checkpoint is None:
         cmd.append("output.overwrite=true")
@@ -88,10 +88,13 @@ def one_run(args, tmp, k):
     m = LOOP_LINE.search(p.stdout)
     steps, wall = int(m.group(1)), float(m.group(3))
     h = mote.read_history(os.path.join(run_dir, "history.txt"))
-    first, last = h[h["step"] <= start_step][-1], h[-1]
-    model_yr = (last["time"] - first["time"]) * args.time_unit_s / YEAR_S
+    last = h[-1]
+    if int(last["step"]) != start_step + steps:
+        raise SystemExit(f"history of {run_dir} ends at step {last['step']}, not {start_step + steps}")
+    model_yr = (last["time"] - start_time) * args.time_unit_s / YEAR_S
+    # The *_seconds columns count the wall time of this process (they start at 0 on a restart).
     solvers = [n[: -len("_seconds")] for n in h.dtype.names if n.endswith("_seconds")]
-    fractions = {n: float(last[n + "_seconds"] - first[n + "_seconds"]) / wall for n in solvers}
+    fractions = {n: float(last[n + "_seconds"]) / wall for n in solvers}
     shutil.rmtree(run_dir, ignore_errors=True)
     return {"steps": steps, "wall_s": wall, "steps_per_s": steps / wall, "model_yr": model_yr,
             "model_yr_per_s": model_yr / wall, "mean_dt_yr": model_yr / steps, "fractions": fractions,
