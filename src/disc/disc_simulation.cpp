@@ -147,7 +147,7 @@ void DiscSimulation::load_state(const io::H5File& file) {
   if (coag_) coag_->load_state(file);
 }
 
-void DiscSimulation::finish(double) { logging::info(driver_->schedule_summary()); }
+std::string DiscSimulation::work_summary() const { return driver_->schedule_summary(); }
 
 double DiscSimulation::min_dust_density() const {
   auto Q = dust_->Q;

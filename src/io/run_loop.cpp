@@ -396,6 +396,10 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   return file.has_attribute("/", "run_id") ? file.read_attribute_string("/", "run_id") : "";
 }
 
+void RunLoop::log_work_summary(const Simulation& sim) const {
+  if (const std::string text = sim.work_summary(); !text.empty()) logging::info(text);
+}
+
 bool RunLoop::report_non_finite(const Simulation& sim, const State& s) const {
   const auto bad = sim.find_non_finite();
   if (bad)
@@ -467,6 +471,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
                     "; writing a checkpoint and stopping");
       if (report_non_finite(sim, s)) return core::kExitNonFinite;
       write_checkpoint(sim, s);
+      log_work_summary(sim);
       return core::kExitInterrupted;
     }
     double dt;
@@ -520,6 +525,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
                 logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)", s.step - start_step, s.time, wall,
                                 (s.step - start_step) / std::max(wall, 1e-30)));
   if (finished) sim.finish(s.time);
+  log_work_summary(sim);
   logging::info("timers:\n", timers_.summary(wall));
   return finished ? core::kExitFinished : core::kExitStepLimit;
 }

@@ -6,7 +6,8 @@ multi-band FLD) on the driver's schedule (sec. 6).
 usage: transition_disc_nonisothermal_check.py EXE WORKDIR DECK
 Checks:
   * the temperature solver ran on its adaptive schedule (more than one call, and
-    fewer than the steps), the log lists it with its wall time;
+    fewer than the steps), the log lists it with its wall time, also when the
+    run stops at run.max_steps;
   * problems/transition_disc/check.py on the output: the super-heated surface
     layer (max over theta of T above T_* (R_*/2R)^1/2 beyond 5 au) and the dust
     mass budget (1e-10) pass;
@@ -27,7 +28,8 @@ full, split = os.path.join(work, "full"), os.path.join(work, "split")
 p = run([exe, deck, f"output.dir={full}"])
 checks = Checks()
 checks.check("driver: temperature" in p.stdout, "the log lists the temperature solver's calls and wall time")
-run([exe, deck, f"output.dir={split}", "run.max_steps=40"])
+first = run([exe, deck, f"output.dir={split}", "run.max_steps=40"])
+checks.check("driver: temperature" in first.stdout, "a run stopped at run.max_steps logs the schedule table too")
 q = run([exe, "--restart", "latest", deck, f"output.dir={split}"])
 checks.check("restarted from" in q.stdout, "the second part restarted from a checkpoint")
 

@@ -74,7 +74,7 @@ class DiscSimulation : public io::Simulation {
   std::vector<io::Diagnostic> diagnostics() const override;
   std::optional<io::NonFinite> find_non_finite() const override;
   /// Logs the driver's schedule summary (calls and wall time per sub-solver).
-  void finish(double time) override;
+  std::string work_summary() const override;
 
   /// Smallest dust density over the active cells and species (all ranks).
   double min_dust_density() const;

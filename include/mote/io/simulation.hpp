@@ -52,6 +52,10 @@ class Simulation {
 
   /// Called once at the end of a completed run (e.g. error against an analytic solution).
   virtual void finish(double /*time*/) {}
+
+  /// The work of this process by part (e.g. calls and wall time per sub-solver), logged whenever
+  /// the loop ends: at run.t_end, at run.max_steps and on a signal; "" for none.
+  virtual std::string work_summary() const { return {}; }
 };
 
 }  // namespace mote::io
