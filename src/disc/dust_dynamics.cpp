@@ -46,10 +46,12 @@ void check_species(const core::Deck& d, core::DeckCheck& check) {
 
 using View4 = View<Real****>;
 
-/// Longest step (over C_adv) for which an acceleration a moves dust with stopping
-/// time t_s by at most dx: a dt^2 <= dx while dt < t_s, a t_s dt <= dx beyond.
-KOKKOS_INLINE_FUNCTION Real source_step_limit(Real dx, Real a, Real ts) {
-  return math::max(math::sqrt(dx / a), dx / (a * ts));
+/// Longest step for which an acceleration a moves dust with stopping time t_s by at
+/// most the fraction c of a cell dx, as the velocity limit c dx / |v| does for a
+/// velocity: a dt^2 / 2 <= c dx while dt < t_s (dust starting at rest), a t_s dt <=
+/// c dx beyond (the terminal velocity a t_s).
+KOKKOS_INLINE_FUNCTION Real source_step_limit(Real c, Real dx, Real a, Real ts) {
+  return math::max(math::sqrt(2 * c * dx / a), c * dx / (a * ts));
 }
 
 /// MDRange over (i, j, s) in [i0, i1) x [j0, j1) x [0, ns).
@@ -491,8 +493,8 @@ double DustDynamics::max_dt() const {
           aZ = math::fabs(aZ);
           const Real ts =
               drag ? dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j))) : Real(1e300);
-          if (radial && aR > 0) m = math::min(m, ca * source_step_limit(dR(i), aR, ts));
-          if (aZ > 0) m = math::min(m, ca * source_step_limit(dZ, aZ, ts));
+          if (radial && aR > 0) m = math::min(m, source_step_limit(ca, dR(i), aR, ts));
+          if (aZ > 0) m = math::min(m, source_step_limit(ca, dZ, aZ, ts));
         }
       },
       Kokkos::Min<Real>(dt));

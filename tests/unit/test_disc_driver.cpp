@@ -148,6 +148,27 @@ TEST(DiscDriver, EmptyCavityKeepsItsTimeStep) {
 
 }  // namespace
 
+TEST(DiscDriver, DustAtRestIsLimitedByTheDisplacementOfItsAcceleration) {
+  // Dust at rest without drag (vertical columns, no diffusion): the step is the source
+  // limit, a dt^2 / 2 = C_adv dZ in the binding cell, the displacement the velocity
+  // limit C_adv dZ / |v| allows for a velocity (RBO24 eq. 6 with the eq. 18 limit).
+  const auto deck = make_deck({"driver.evolve_gas=false", "gas.radial_velocity=\"zero\"", "dust.drag=false",
+                               "dust.diffusion=false", "dust.radial_fluxes=false"});
+  const auto units = units::unit_system_by_name("au_msun");
+  disc::DiscSimulation sim(deck, core::Comm::world(), units,
+                           disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
+  const auto& g = sim.grid();
+  const double GM = sim.gas().config().GM, c_adv = 0.4;
+  double expected = 1e300;
+  for (int i = g.i_begin(); i < g.i_end(); ++i)
+    for (int j = g.j_begin(); j < g.j_end(); ++j) {
+      const double R = g.Rc_h(i), Z = R * std::tan(g.tc_h(j)), r3 = std::pow(R * R + Z * Z, 1.5);
+      const double dZ = R * (std::tan(g.te_h(j + 1)) - std::tan(g.te_h(j))), aZ = GM * std::fabs(Z) / r3;
+      expected = std::min(expected, std::sqrt(2 * c_adv * dZ / aZ));
+    }
+  EXPECT_NEAR(sim.max_dt() / expected, 1.0, 1e-12);
+}
+
 TEST(DiscDriver, CoagulationFromTheDeckConservesTotalDustMass) {
   // A [coagulation] table registers DiscCoagulation on the adaptive schedule
   // (RBO24 sec. 6); with closed boundaries the total dust mass is conserved
