@@ -73,7 +73,7 @@ class DiscSimulation : public io::Simulation {
   void load_state(const io::H5File& file) override;
   std::vector<io::Diagnostic> diagnostics() const override;
   std::optional<io::NonFinite> find_non_finite() const override;
-  /// Logs the driver's schedule summary (calls and wall time per sub-solver).
+  /// The driver's schedule summary (calls and wall time per sub-solver), logged by the run loop.
   std::string work_summary() const override;
 
   /// Smallest dust density over the active cells and species (all ranks).
