@@ -2,7 +2,9 @@
 #include "mote/core/comm.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 namespace mote::core {
@@ -39,6 +41,8 @@ double Comm::sum(double x) const { return allreduce(x, MPI_DOUBLE, MPI_SUM, comm
 long long Comm::sum(long long x) const { return allreduce(x, MPI_LONG_LONG, MPI_SUM, comm_, size_); }
 int Comm::max(int x) const { return allreduce(x, MPI_INT, MPI_MAX, comm_, size_); }
 int Comm::min(int x) const { return allreduce(x, MPI_INT, MPI_MIN, comm_, size_); }
+long long Comm::max(long long x) const { return allreduce(x, MPI_LONG_LONG, MPI_MAX, comm_, size_); }
+long long Comm::min(long long x) const { return allreduce(x, MPI_LONG_LONG, MPI_MIN, comm_, size_); }
 
 std::vector<double> Comm::sum(const std::vector<double>& x) const {
   if (size_ == 1) return x;
@@ -65,19 +69,34 @@ void Comm::sendrecv(const double* send, int send_count, int dest, double* recv, 
   MPI_Sendrecv(send, send_count, MPI_DOUBLE, dest < 0 ? MPI_PROC_NULL : dest, tag, recv, recv_count, MPI_DOUBLE,
                source < 0 ? MPI_PROC_NULL : source, tag, comm_, MPI_STATUS_IGNORE);
 }
-void Comm::send_bytes(const void* data, std::size_t bytes, int dest, int tag) const {
-  if (bytes > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw std::length_error("Comm::send_bytes: a message of more than 2^31 - 1 bytes");
-  MPI_Send(data, static_cast<int>(bytes), MPI_BYTE, dest, tag, comm_);
+void Comm::abort(int exit_code) const {
+  MPI_Abort(comm_, exit_code);
+  std::exit(exit_code);  // MPI_Abort does not return
 }
 
-std::vector<unsigned char> Comm::receive_bytes(int source, int tag) const {
-  MPI_Status status;
-  MPI_Probe(source, tag, comm_, &status);
-  int bytes = 0;
-  MPI_Get_count(&status, MPI_BYTE, &bytes);
-  std::vector<unsigned char> data(static_cast<std::size_t>(bytes));
-  MPI_Recv(data.data(), bytes, MPI_BYTE, source, tag, comm_, MPI_STATUS_IGNORE);
+bool Comm::send_bytes(const void* data, std::size_t bytes, int dest, int tag) const {
+  const auto count = static_cast<std::uint64_t>(bytes);
+  MPI_Send(&count, 1, MPI_UINT64_T, dest, tag, comm_);
+  int taken = 0;
+  MPI_Recv(&taken, 1, MPI_INT, dest, tag, comm_, MPI_STATUS_IGNORE);
+  if (taken) MPI_Send(data, static_cast<int>(bytes), MPI_BYTE, dest, tag, comm_);
+  return taken != 0;
+}
+
+std::optional<std::vector<unsigned char>> Comm::receive_bytes(int source, int tag, bool wanted) const {
+  std::uint64_t count = 0;
+  MPI_Recv(&count, 1, MPI_UINT64_T, source, tag, comm_, MPI_STATUS_IGNORE);
+  std::optional<std::vector<unsigned char>> data;
+  if (wanted && count <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+    try {
+      data.emplace(static_cast<std::size_t>(count));
+    } catch (const std::bad_alloc&) {
+      data.reset();
+    }
+  }
+  const int taken = data ? 1 : 0;
+  MPI_Send(&taken, 1, MPI_INT, source, tag, comm_);
+  if (taken) MPI_Recv(data->data(), static_cast<int>(count), MPI_BYTE, source, tag, comm_, MPI_STATUS_IGNORE);
   return data;
 }
 #else
@@ -87,6 +106,8 @@ double Comm::sum(double x) const { return x; }
 long long Comm::sum(long long x) const { return x; }
 int Comm::max(int x) const { return x; }
 int Comm::min(int x) const { return x; }
+long long Comm::max(long long x) const { return x; }
+long long Comm::min(long long x) const { return x; }
 std::vector<double> Comm::sum(const std::vector<double>& x) const { return x; }
 void Comm::barrier() const {}
 int Comm::broadcast(int x) const { return x; }
@@ -94,11 +115,13 @@ void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<doubl
   sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
 }
 
-void Comm::send_bytes(const void*, std::size_t, int, int) const {
+void Comm::abort(int exit_code) const { std::exit(exit_code); }
+
+bool Comm::send_bytes(const void*, std::size_t, int, int) const {
   throw std::logic_error("Comm::send_bytes without MPI: there is no other rank");
 }
 
-std::vector<unsigned char> Comm::receive_bytes(int, int) const {
+std::optional<std::vector<unsigned char>> Comm::receive_bytes(int, int, bool) const {
   throw std::logic_error("Comm::receive_bytes without MPI: there is no other rank");
 }
 

@@ -4,13 +4,16 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <new>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <utility>
@@ -164,8 +167,8 @@ std::pair<int, std::string> first_error(const std::string& error, const core::Co
   if (first == comm.size()) return {-1, ""};
   if (first != 0 && comm.rank() == first) comm.send_bytes(error.data(), error.size(), 0, kErrorTag);
   if (first != 0 && comm.is_root()) {
-    const std::vector<unsigned char> bytes = comm.receive_bytes(first, kErrorTag);
-    return {first, std::string(bytes.begin(), bytes.end())};
+    const auto bytes = comm.receive_bytes(first, kErrorTag);
+    return {first, bytes ? std::string(bytes->begin(), bytes->end()) : "(its message could not be received)"};
   }
   return {first, comm.rank() == first ? error : ""};
 }
@@ -208,6 +211,9 @@ void write_bytes(const std::string& path, const char* data, size_t size) {
 
 bool is_state_dataset(const std::string& name) { return name.rfind("/state/", 0) == 0; }
 
+/// FNV-1a's offset basis: the hash of no bytes.
+constexpr std::uint64_t kFnvBasis = 1469598103934665603ULL;
+
 /// FNV-1a: `hash` extended by `size` bytes at `data`.
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, size_t size) {
   const auto* bytes = static_cast<const unsigned char*>(data);
@@ -215,10 +221,24 @@ std::uint64_t fnv1a(std::uint64_t hash, const void* data, size_t size) {
   return hash;
 }
 
+/// Hashes of a query's result, compared between ranks by H5File::agreed().
+std::uint64_t value_hash(bool v) { return v ? 1 : 0; }
+std::uint64_t value_hash(double v) { return fnv1a(kFnvBasis, &v, sizeof(v)); }
+std::uint64_t value_hash(std::int64_t v) { return fnv1a(kFnvBasis, &v, sizeof(v)); }
+std::uint64_t value_hash(const std::string& v) { return fnv1a(kFnvBasis, v.data(), v.size()); }
+std::uint64_t value_hash(const std::vector<hsize_t>& v) {
+  return fnv1a(kFnvBasis, v.data(), v.size() * sizeof(hsize_t));
+}
+std::uint64_t value_hash(const std::vector<std::string>& v) {
+  std::uint64_t hash = kFnvBasis;
+  for (const auto& name : v) hash = fnv1a(hash, name.c_str(), name.size() + 1);
+  return hash;
+}
+
 /// The running hash of H5File::attributes_hash() over the attributes of one object.
 struct AttributeHash {
   std::string object;
-  std::uint64_t hash = 1469598103934665603ULL;
+  std::uint64_t hash = kFnvBasis;
 };
 
 /// H5Aiterate2 callback: folds the object's path, the attribute's name, type class and stored bytes into the hash.
@@ -239,6 +259,46 @@ herr_t hash_attribute(hid_t object, const char* name, const H5A_info_t*, void* d
   h.hash = fnv1a(h.hash, &type_class, sizeof(type_class));
   h.hash = fnv1a(h.hash, bytes.data(), bytes.size());
   return 0;
+}
+
+/// H5File::element_code_here() of a dataset of reals (8-byte doubles when read); integers give their size.
+constexpr std::int64_t kRealElement = -1;
+
+/// first_non_finite() where every element is finite.
+constexpr long long kAllFinite = std::numeric_limits<long long>::max();
+
+/// The global (row-major) index of the first non-finite element of `part` (read into `data`, element code
+/// `element`), kAllFinite if none is or the elements are integers.
+long long first_non_finite(const Block& part, std::int64_t element, const void* data) {
+  if (element != kRealElement) return kAllFinite;
+  const size_t n = element_count(part.count);
+  const size_t row = part.count.empty() ? 1 : n / std::max<size_t>(part.count[0], 1);
+  const size_t start = part.offset.empty() ? 0 : part.offset[0] * row;
+  for (size_t k = 0; k < n; ++k)
+    if (!std::isfinite(static_cast<const double*>(data)[k])) return static_cast<long long>(start + k);
+  return kAllFinite;
+}
+
+/// This rank's share of a dataset of shape `dims` checked by all ranks together: a slab of rows (of the
+/// first dimension), the whole of a scalar.
+Block share_of(const std::vector<hsize_t>& dims, const core::Comm& comm) {
+  Block part = Block::whole(dims);
+  if (dims.empty()) return part;
+  const auto share = [&](int rank) { return dims[0] * static_cast<hsize_t>(rank) / comm.size(); };
+  part.offset[0] = share(comm.rank());
+  part.count[0] = share(comm.rank() + 1) - part.offset[0];
+  return part;
+}
+
+/// Resizes `buffer` to `n` elements; memory exhausted is a std::runtime_error naming `name`.
+bool make_room(std::vector<std::uint64_t>& buffer, size_t n, const std::string& name) {
+  try {
+    buffer.resize(n);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(
+        logging::cat("no memory for the ", n * sizeof(std::uint64_t), " bytes of ", name, " to check it"));
+  }
+  return true;
 }
 
 }  // namespace
@@ -286,21 +346,45 @@ void H5File::open_for_reading() {
   check_on_every_rank(file_ < 0 ? -1 : 0, "open the file");
 }
 
-void H5File::agree_with_root(const std::string& root_error) const {
+void H5File::agree_with_root(const std::string& root_error, const std::exception_ptr& cause) const {
   if (comm_.broadcast(root_error.empty() ? 0 : 1) == 0) return;
+  if (comm_.is_root() && cause) std::rethrow_exception(cause);
   if (comm_.is_root()) throw core::IOError(root_error);
   throw core::PeerIOError("rank 0 could not write '" + path_ + "'");
 }
 
-void H5File::agree_on_error(const std::string& error) const {
+void H5File::agree_on_error(const std::string& error, const std::exception_ptr& cause) const {
   const auto [rank, text] = first_error(error, comm_);
   if (rank < 0) return;
+  if (comm_.is_root() && rank == 0 && cause) std::rethrow_exception(cause);
   if (comm_.is_root()) throw core::IOError(rank == 0 ? text : "on rank " + std::to_string(rank) + ": " + text);
   throw core::PeerIOError("rank " + std::to_string(rank) + " could not read '" + path_ + "'");
 }
 
 void H5File::check_on_every_rank(herr_t status, const std::string& what) const {
   agree_on_error(status < 0 ? failure(what, path_) : std::string());
+}
+
+template <class Query>
+auto H5File::agreed(const std::string& what, Query&& query) const -> decltype(query()) {
+  if (building_ || comm_.size() == 1) return query();
+  std::string error;
+  std::exception_ptr cause;
+  decltype(query()) result{};
+  try {
+    result = query();
+  } catch (const std::exception& e) {
+    error = e.what();
+    cause = std::current_exception();
+  }
+  agree_on_error(error, cause);
+  const auto hash = static_cast<long long>(value_hash(result));
+  if (comm_.min(hash) != comm_.max(hash)) {
+    if (comm_.is_root())
+      throw core::IOError("the ranks read different " + what + " from '" + path_ + "': they do not see the same file");
+    throw core::PeerIOError("the ranks read different " + what + " from '" + path_ + "'");
+  }
+  return result;
 }
 
 template <class Step>
@@ -313,6 +397,9 @@ void H5File::build(Step&& step) {
     build_error_ = e.what();
   } catch (const std::bad_alloc&) {
     build_error_ = "out of memory while building '" + path_ + "' on rank 0, which holds the whole file until written";
+  } catch (const std::exception& e) {
+    build_error_ = e.what();
+    build_cause_ = std::current_exception();  // not an I/O failure: rethrown on rank 0 as it was
   }
 }
 
@@ -339,7 +426,7 @@ void H5File::close() {
     build([&] { write_image_of(file); });
     H5Fclose(file);
   }
-  agree_with_root(build_error_);
+  agree_with_root(build_error_, build_cause_);
 }
 
 void H5File::write_image_of(hid_t file) const {
@@ -358,7 +445,7 @@ void H5File::create_group(const std::string& path) {
     while (start <= path.size()) {
       const size_t end = path.find('/', start);
       const std::string partial = path.substr(0, end == std::string::npos ? path.size() : end);
-      if (!partial.empty() && partial != "/" && !exists(partial)) {
+      if (!partial.empty() && partial != "/" && !exists_here(partial)) {
         Handle g(check_id(H5Gcreate2(file_, partial.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                           "create group " + partial, path_),
                  H5Gclose);
@@ -370,6 +457,10 @@ void H5File::create_group(const std::string& path) {
 }
 
 bool H5File::exists(const std::string& path) const {
+  return agreed("answers to whether " + path + " exists", [&] { return exists_here(path); });
+}
+
+bool H5File::exists_here(const std::string& path) const {
   if (path == "/") return true;
   // Check each component so that a missing parent is not an error.
   size_t start = 1;
@@ -395,10 +486,10 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
   // A "whole" block is written by rank 0 alone; the other ranks send their blocks to rank 0.
   const bool whole = block.count == block.global_dims;
   const bool writes = !whole || comm_.is_root();
-  if (building_ && !whole) agree_with_root(build_error_);  // no block is sent to a rank 0 that has failed
+  if (building_ && !whole) agree_with_root(build_error_, build_cause_);  // no block is sent to a rank 0 that has failed
   if (!holds_file() && !whole) {
     const std::vector<unsigned char> message = pack_block(block, element_size, data);
-    comm_.send_bytes(message.data(), message.size(), 0, kBlockTag);
+    comm_.send_bytes(message.data(), message.size(), 0, kBlockTag);  // refused: told at the next agreement
   }
   if (holds_file()) {
     const auto slash = name.rfind('/');
@@ -410,8 +501,11 @@ void H5File::write_impl(const std::string& name, const Block& block, hid_t type,
     });
     const Handle closer(dset, H5Dclose);
     for (int r = 1; r < comm_.size() && !whole; ++r) {
-      const std::vector<unsigned char> message = comm_.receive_bytes(r, kBlockTag);  // taken even after a failure
-      build([&] { write_received_block(dset, name, type, block.global_dims, message); });
+      const auto message = comm_.receive_bytes(r, kBlockTag, build_error_.empty());  // refused after a failure
+      if (!message && build_error_.empty())
+        build_error_ = "out of memory for rank " + std::to_string(r) + "'s block of " + name + " while building '" +
+                       path_ + "' on rank 0, which holds the whole file until written";
+      if (message) build([&] { write_received_block(dset, name, type, block.global_dims, *message); });
     }
   }
   if (is_state_dataset(name)) write_checksum(name, block, element_size, writes ? data : nullptr);
@@ -457,28 +551,38 @@ void H5File::write_checksum(const std::string& name, const Block& block, size_t 
 }
 
 void H5File::read_impl(const std::string& name, const Block& block, hid_t type, void* data) const {
-  if (!exists(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
-  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
-  Handle filespace(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
-  const int rank = H5Sget_simple_extent_ndims(filespace);
-  std::vector<hsize_t> dims(static_cast<size_t>(rank));
-  H5Sget_simple_extent_dims(filespace, dims.data(), nullptr);
-  if (dims != block.global_dims)
-    throw core::InputError("dataset " + name + " in '" + path_ + "' holds " + shape_text(dims) +
+  const std::vector<hsize_t> stored = dims(name);
+  if (stored != block.global_dims)
+    throw core::InputError("dataset " + name + " in '" + path_ + "' holds " + shape_text(stored) +
                            " values where this run needs " + shape_text(block.global_dims) +
                            ": a restart cannot change the size of the state (a resolution or a count of particles, "
                            "species or bands), not even with --force");
-  check(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
-        "select a block of " + name, path_);
-  Handle memspace(
-      check_id(H5Screate_simple(rank, block.count.data(), nullptr), "create the memory space of " + name, path_),
-      H5Sclose);
-  Handle dxpl(transfer_plist(), H5Pclose);
-  check_on_every_rank(H5Dread(dset, type, memspace, filespace, dxpl, data), "read dataset " + name);
+  std::optional<Handle> dset, filespace, memspace, dxpl;
+  agreed("selections of " + name, [&] {
+    dset.emplace(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
+    filespace.emplace(check_id(H5Dget_space(*dset), "read the dataspace of " + name, path_), H5Sclose);
+    if (element_count(block.count) == 0) {  // nothing for this rank, which still takes part in the read
+      check(H5Sselect_none(*filespace), "select nothing of " + name, path_);
+      memspace.emplace(check_id(H5Scopy(*filespace), "create the memory space of " + name, path_), H5Sclose);
+    } else {
+      check(H5Sselect_hyperslab(*filespace, H5S_SELECT_SET, block.offset.data(), nullptr, block.count.data(), nullptr),
+            "select a block of " + name, path_);
+      memspace.emplace(check_id(H5Screate_simple(static_cast<int>(block.count.size()), block.count.data(), nullptr),
+                                "create the memory space of " + name, path_),
+                       H5Sclose);
+    }
+    dxpl.emplace(transfer_plist(), H5Pclose);
+    return true;
+  });
+  check_on_every_rank(H5Dread(*dset, type, *memspace, *filespace, *dxpl, data), "read dataset " + name);
 }
 
 std::vector<hsize_t> H5File::dims(const std::string& name) const {
-  if (!exists(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
+  return agreed("shapes of " + name, [&] { return dims_here(name); });
+}
+
+std::vector<hsize_t> H5File::dims_here(const std::string& name) const {
+  if (!exists_here(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
   Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
   Handle space(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
   std::vector<hsize_t> d(static_cast<size_t>(H5Sget_simple_extent_ndims(space)));
@@ -487,8 +591,12 @@ std::vector<hsize_t> H5File::dims(const std::string& name) const {
 }
 
 std::vector<std::string> H5File::datasets(const std::string& group) const {
+  return agreed("lists of the datasets under " + group, [&] { return datasets_here(group); });
+}
+
+std::vector<std::string> H5File::datasets_here(const std::string& group) const {
   std::vector<std::string> names;
-  if (!exists(group)) return names;
+  if (!exists_here(group)) return names;
   Handle g(check_id(H5Oopen(file_, group.c_str(), H5P_DEFAULT), "open group " + group, path_), H5Oclose);
   // Generic lambda: the link-info type differs between HDF5 1.10 and 1.12+.
   const auto collect = [](hid_t parent, const char* name, const auto*, void* data) -> herr_t {
@@ -532,8 +640,12 @@ void H5File::write_attributes_checksum() {
 }
 
 std::string H5File::check_attributes() const {
-  if (!has_attribute("/", kAttributesChecksum)) return "it has no checksum of its attributes";
-  if (static_cast<std::uint64_t>(read_attribute_int("/", kAttributesChecksum)) != attributes_hash())
+  return agreed("verdicts on the attributes", [&] { return attributes_defect_here(); });
+}
+
+std::string H5File::attributes_defect_here() const {
+  if (!has_attribute_here("/", kAttributesChecksum)) return "it has no checksum of its attributes";
+  if (static_cast<std::uint64_t>(read_attribute_int_here("/", kAttributesChecksum)) != attributes_hash())
     return "its attributes (time, step, run id, deck, ...) do not match their checksum (the file was changed or "
            "damaged)";
   return {};
@@ -541,28 +653,32 @@ std::string H5File::check_attributes() const {
 
 std::string H5File::check_state_dataset(const std::string& name) const {
   if (!has_attribute(name, kChecksumAttribute)) return "dataset " + name + " has no checksum";
-  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
-  Handle type(check_id(H5Dget_type(dset), "read the type of " + name, path_), H5Tclose);
-  const bool real = H5Tget_class(type) == H5T_FLOAT;
-  const size_t size = H5Tget_size(type);
-  const Block block = Block::whole(dims(name));
-  const size_t n = element_count(block.count);
-  std::vector<std::uint64_t> buffer(n);  // 8 bytes per element suffice for every stored type
-  if (real)
-    read(name, block, reinterpret_cast<double*>(buffer.data()));
-  else if (size == 4)
-    read(name, block, reinterpret_cast<std::int32_t*>(buffer.data()));
-  else
-    read(name, block, reinterpret_cast<std::int64_t*>(buffer.data()));
-  const size_t element_size = real ? sizeof(double) : (size == 4 ? 4 : 8);
-  if (real)
-    for (size_t k = 0; k < n; ++k)
-      if (!std::isfinite(reinterpret_cast<const double*>(buffer.data())[k]))
-        return logging::cat("dataset ", name, " holds a non-finite value at element ", k);
   const auto stored = static_cast<std::uint64_t>(read_attribute_int(name, kChecksumAttribute));
-  if (stored != block_checksum(block, element_size, buffer.data()))
+  const std::int64_t element = agreed("types of " + name, [&] { return element_code_here(name); });
+  const Block part = share_of(dims(name), comm_);
+  std::vector<std::uint64_t> buffer;  // 8 bytes per element suffice for every stored type
+  agreed("room to check " + name, [&] { return make_room(buffer, element_count(part.count), name); });
+  if (element == kRealElement)
+    read(name, part, reinterpret_cast<double*>(buffer.data()));
+  else if (element == static_cast<std::int64_t>(sizeof(std::int32_t)))
+    read(name, part, reinterpret_cast<std::int32_t*>(buffer.data()));
+  else
+    read(name, part, reinterpret_cast<std::int64_t*>(buffer.data()));
+  const long long first_bad = comm_.min(first_non_finite(part, element, buffer.data()));
+  if (first_bad != kAllFinite)
+    return logging::cat("dataset ", name, " holds a non-finite value at element ", first_bad);
+  const size_t element_size = element == kRealElement ? sizeof(double) : static_cast<size_t>(element);
+  const auto mine = static_cast<long long>(block_checksum(part, element_size, buffer.data()));
+  if (static_cast<std::uint64_t>(comm_.sum(mine)) != stored)  // wraps around modulo 2^64 like the sum itself
     return "dataset " + name + " does not match its checksum (the file was changed or damaged)";
   return {};
+}
+
+std::int64_t H5File::element_code_here(const std::string& name) const {
+  Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
+  Handle type(check_id(H5Dget_type(dset), "read the type of " + name, path_), H5Tclose);
+  if (H5Tget_class(type) == H5T_FLOAT) return kRealElement;
+  return H5Tget_size(type) == sizeof(std::int32_t) ? sizeof(std::int32_t) : sizeof(std::int64_t);
 }
 
 void H5File::write(const std::string& n, const Block& b, const double* d) { write_impl(n, b, H5T_NATIVE_DOUBLE, d); }
@@ -627,13 +743,19 @@ void H5File::write_attribute(const std::string& object, const std::string& name,
 }
 
 double H5File::read_attribute_real(const std::string& object, const std::string& name) const {
-  Handle attr = open_attr(file_, path_, object, name);
-  double v = 0;
-  check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name, path_);
-  return v;
+  return agreed("values of attribute " + object + "@" + name, [&] {
+    Handle attr = open_attr(file_, path_, object, name);
+    double v = 0;
+    check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name, path_);
+    return v;
+  });
 }
 
 std::int64_t H5File::read_attribute_int(const std::string& object, const std::string& name) const {
+  return agreed("values of attribute " + object + "@" + name, [&] { return read_attribute_int_here(object, name); });
+}
+
+std::int64_t H5File::read_attribute_int_here(const std::string& object, const std::string& name) const {
   Handle attr = open_attr(file_, path_, object, name);
   std::int64_t v = 0;
   check(H5Aread(attr, H5T_NATIVE_INT64, &v), "read attribute " + name, path_);
@@ -641,17 +763,24 @@ std::int64_t H5File::read_attribute_int(const std::string& object, const std::st
 }
 
 std::string H5File::read_attribute_string(const std::string& object, const std::string& name) const {
-  Handle attr = open_attr(file_, path_, object, name);
-  Handle type(H5Aget_type(attr), H5Tclose);
-  const size_t size = H5Tget_size(type);
-  std::string v(size, '\0');
-  check(H5Aread(attr, type, v.data()), "read attribute " + name, path_);
-  while (!v.empty() && v.back() == '\0') v.pop_back();
-  return v;
+  return agreed("values of attribute " + object + "@" + name, [&] {
+    Handle attr = open_attr(file_, path_, object, name);
+    Handle type(H5Aget_type(attr), H5Tclose);
+    const size_t size = H5Tget_size(type);
+    std::string v(size, '\0');
+    check(H5Aread(attr, type, v.data()), "read attribute " + name, path_);
+    while (!v.empty() && v.back() == '\0') v.pop_back();
+    return v;
+  });
 }
 
 bool H5File::has_attribute(const std::string& object, const std::string& name) const {
-  if (!exists(object)) return false;
+  return agreed("answers to whether attribute " + object + "@" + name + " exists",
+                [&] { return has_attribute_here(object, name); });
+}
+
+bool H5File::has_attribute_here(const std::string& object, const std::string& name) const {
+  if (!exists_here(object)) return false;
   Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object, path_), H5Oclose);
   return H5Aexists(obj, name.c_str()) > 0;
 }

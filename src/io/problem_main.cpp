@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <regex>
 #include <stdexcept>
@@ -114,6 +115,21 @@ int report(const std::exception& error, const core::Comm& comm) {
   return core::exit_code_of(error);
 }
 
+/// The exit code of a run that `error` ended. The typed failures (bad input, numerical, I/O) are
+/// thrown on every rank together; any other exception (memory exhausted, a bug) may be this rank's
+/// alone, which would leave the other ranks waiting for it: on several ranks it ends them all (exit 1).
+int stop_after(const std::exception& error, const core::Comm& comm) {
+  const bool out_of_memory = dynamic_cast<const std::bad_alloc*>(&error) != nullptr;
+  const std::string what = out_of_memory ? "out of memory (" + std::string(error.what()) + ")" : error.what();
+  const core::ExitCode code = core::exit_code_of(error);
+  if (code != core::kExitError || comm.size() == 1) {
+    logging::error(what);
+    return code;
+  }
+  logging::error(what, " on rank ", comm.rank(), ": stopping every rank");
+  comm.abort(code);
+}
+
 /// `text` as a TOML basic string.
 std::string toml_string(const std::string& text) {
   std::string quoted = "\"";
@@ -220,8 +236,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
   } catch (const core::PeerIOError& e) {
     return core::exit_code_of(e);  // reported by the rank that failed
   } catch (const std::exception& e) {
-    logging::error(e.what());
-    return core::exit_code_of(e);
+    return stop_after(e, comm);
   }
 }
 

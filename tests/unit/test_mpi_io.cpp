@@ -3,7 +3,10 @@
 // in-memory build of a file that stop every rank together (issue 22).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "mote/core/comm.hpp"
 #include "mote/core/exit_codes.hpp"
@@ -31,6 +34,22 @@ TEST(MpiComm, RingExchange) {
   comm.sendrecv(send, other, recv, other, 5);
   EXPECT_EQ(recv[0], double(other));
   EXPECT_EQ(recv[1], 3.0);
+}
+
+// Issue 22: bytes are offered by their count first; a receiver that does not take them (no memory for them)
+// leaves the sender going on, and the next message arrives as sent.
+TEST(MpiComm, OfferedBytesCanBeRefused) {
+  const auto comm = Comm::world();
+  const std::string first = "refused", second = "taken";
+  if (comm.rank() == 1) {
+    EXPECT_FALSE(comm.send_bytes(first.data(), first.size(), 0, 9));
+    EXPECT_TRUE(comm.send_bytes(second.data(), second.size(), 0, 9));
+  } else {
+    EXPECT_FALSE(comm.receive_bytes(1, 9, false).has_value());
+    const auto bytes = comm.receive_bytes(1, 9);
+    ASSERT_TRUE(bytes.has_value());
+    EXPECT_EQ(std::string(bytes->begin(), bytes->end()), second);
+  }
 }
 
 TEST(MpiHdf5, CollectiveBlocksRoundTrip) {
@@ -96,7 +115,7 @@ TEST(MpiHdf5, RootAttributeFailureStopsEveryRank) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
-// A dataset that rank 0 cannot create (its name is taken) while rank 1 sends its block: rank 0 still takes the
+// A dataset that rank 0 cannot create (its name is taken) while rank 1 offers its block: rank 0 refuses the
 // block, and every rank stops together.
 TEST(MpiHdf5, RootDatasetFailureStopsEveryRank) {
   const auto comm = Comm::world();
@@ -109,4 +128,50 @@ TEST(MpiHdf5, RootDatasetFailureStopsEveryRank) {
   EXPECT_EQ(thrown, comm.is_root() ? "root" : "peer");
   EXPECT_EQ(comm.min(thrown == (comm.is_root() ? "root" : "peer") ? 1 : 0), 1);
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+namespace {
+
+/// Rank 0 alone overwrites element `k` of /state/a in `path` behind its checksum's back.
+void overwrite_on_rank0(const std::string& path, const Comm& comm, std::vector<double> values, int k, double value) {
+  comm.barrier();
+  if (comm.is_root()) {
+    values[k] = value;
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t dset = H5Dopen2(file, "/state/a", H5P_DEFAULT);
+    H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    H5Dclose(dset);
+    H5Fclose(file);
+  }
+  comm.barrier();
+}
+
+}  // namespace
+
+// Issue 22: each rank checks a slab of a state dataset's rows (rank 1 rows 2-4 of 5) and the ranks sum their
+// parts of the checksum: a sound dataset passes, and a NaN or a changed value in rank 1's slab fails on both
+// ranks with the global element index.
+TEST(MpiHdf5, StateChecksumsAreCheckedInSlabs) {
+  const auto comm = Comm::world();
+  const std::string path = (std::filesystem::temp_directory_path() / "mote_mpi_state_slabs.h5").string();
+  std::vector<double> all(15);
+  for (int k = 0; k < 15; ++k) all[k] = 0.5 * k - 3.0;
+  const hsize_t row0 = comm.rank() == 0 ? 0 : 3, rows = comm.rank() == 0 ? 3 : 2;  // written as 3 + 2 rows
+  Block b;
+  b.global_dims = {5, 3};
+  b.offset = {row0, 0};
+  b.count = {rows, 3};
+  {
+    H5File f(path, H5File::Mode::Create, comm);
+    f.write("/state/a", b, all.data() + row0 * 3);
+    f.close();
+  }
+  comm.barrier();
+  EXPECT_EQ(H5File(path, H5File::Mode::Read, comm).check_state_dataset("/state/a"), "");
+  overwrite_on_rank0(path, comm, all, 12, std::nan(""));
+  EXPECT_EQ(H5File(path, H5File::Mode::Read, comm).check_state_dataset("/state/a"),
+            "dataset /state/a holds a non-finite value at element 12");
+  overwrite_on_rank0(path, comm, all, 7, 0.5 * 7 - 3.0 + 1e-15);
+  EXPECT_NE(H5File(path, H5File::Mode::Read, comm).check_state_dataset("/state/a").find("does not match its checksum"),
+            std::string::npos);
 }

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #ifdef MOTE_HAVE_MPI
@@ -27,6 +28,8 @@ class Comm {
   long long sum(long long x) const;
   int max(int x) const;
   int min(int x) const;
+  long long max(long long x) const;
+  long long min(long long x) const;
   /// Element-wise sum of a vector over all ranks (same length on every rank).
   std::vector<double> sum(const std::vector<double>& x) const;
   void barrier() const;
@@ -35,10 +38,16 @@ class Comm {
   /// Paired exchange: send `send` to rank `dest`, receive `recv.size()` values from `source`.
   /// A negative rank means "no partner" on that side (nothing sent or received).
   void sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const;
-  /// Sends `bytes` bytes to rank `dest` (blocking; paired with receive_bytes on `dest`).
-  void send_bytes(const void* data, std::size_t bytes, int dest, int tag) const;
-  /// The bytes of the next message from rank `source` with `tag`, whatever its length.
-  std::vector<unsigned char> receive_bytes(int source, int tag) const;
+  /// Offers `bytes` bytes to rank `dest` (blocking; paired with receive_bytes on `dest`): sends their count
+  /// first and the bytes only if `dest` takes them. Returns whether they were sent.
+  bool send_bytes(const void* data, std::size_t bytes, int dest, int tag) const;
+  /// The bytes that rank `source` offers with `tag` (send_bytes), whatever their count; std::nullopt
+  /// where they are not taken: not `wanted`, more than 2^31 - 1, or no memory for them. The sender then
+  /// sends nothing, so that a receiver short of memory leaves no rank waiting.
+  std::optional<std::vector<unsigned char>> receive_bytes(int source, int tag, bool wanted = true) const;
+  /// Ends every rank of the run with `exit_code` (MPI_Abort): for a failure of this rank alone, which
+  /// the others would otherwise wait for in their next collective call. Without MPI, std::exit.
+  [[noreturn]] void abort(int exit_code) const;
   /// Raw-pointer form of sendrecv (host memory).
   void sendrecv(const double* send, int send_count, int dest, double* recv, int recv_count, int source, int tag) const;
 

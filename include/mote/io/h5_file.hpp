@@ -9,13 +9,17 @@
 // sees and that stops every rank together: HDF5 cannot close a file whose
 // flush failed, and parallel HDF5 1.10 deadlocks inside H5Fclose when a write
 // failed on one rank. Rank 0 holds the whole file image while it is built.
-// A failure while rank 0 builds it (an HDF5 call, or memory exhausted) is
-// kept and the rest of the build skipped (rank 0 still takes the blocks sent
-// to it); every rank learns of it before the next distributed dataset is
-// sent, or at close(), and all stop together.
+// A failure while rank 0 builds it (an HDF5 call, memory exhausted, any
+// other exception) is kept and the rest of the build skipped; every rank
+// learns of it before the next distributed dataset is sent, or at close(),
+// and all stop together. Each block is offered by its size first, so rank 0
+// refuses it (and its sender goes on) after a failure or where it has no
+// memory for it.
 // A file is read (Mode::Read) with the MPI-IO driver on several ranks, each
-// dataset read collectively; opening the file and reading a dataset fail on
-// every rank when they fail on one (rank 0 reports which rank and why).
+// dataset read collectively. Every query of a file read on several ranks
+// (open, exists, shapes, attributes, checks, reads) is agreed: it fails on
+// every rank when it fails on one (rank 0 reports which rank and why), and a
+// result that differs between ranks (they see different files) is a failure.
 // Every failed HDF5 call is a core::IOError naming the file, the operation
 // and the system error; HDF5's own error stack is not printed but appended to
 // hdf5_errors.log beside the file. Every dataset under "/state" (checkpoint
@@ -29,6 +33,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -72,8 +77,8 @@ class H5File {
   std::vector<hsize_t> dims(const std::string& name) const;
   /// Paths of the datasets under `group`, recursively, in name order.
   std::vector<std::string> datasets(const std::string& group) const;
-  /// What is wrong with the state dataset `name` (read whole on every rank):
-  /// no or a different checksum, a non-finite real; empty if nothing.
+  /// What is wrong with the state dataset `name`: no or a different checksum, a non-finite real; empty if
+  /// nothing. Each rank reads and checks a slab of its rows; the ranks sum their parts of the checksum.
   std::string check_state_dataset(const std::string& name) const;
   /// Stores a checksum of every attribute in the file (object, name, type and bytes) as the root
   /// attribute "attributes_checksum"; call it after the last attribute is written.
@@ -96,13 +101,30 @@ class H5File {
   /// Mode::Create on rank 0: an empty file in memory; a failure is a core::IOError on every rank.
   void create_image();
   void open_for_reading();
-  /// Throws on every rank where rank 0 failed with `root_error` (core::PeerIOError on the others).
-  void agree_with_root(const std::string& root_error) const;
+  /// Throws on every rank where rank 0 failed with `root_error`: rank 0 `cause` if given, else a
+  /// core::IOError; the others a core::PeerIOError.
+  void agree_with_root(const std::string& root_error, const std::exception_ptr& cause = nullptr) const;
   /// Throws on every rank where any rank's `error` is not empty: rank 0 a core::IOError with the first
-  /// failing rank's error, the others a core::PeerIOError.
-  void agree_on_error(const std::string& error) const;
+  /// failing rank's error (or its own `cause` where it failed first), the others a core::PeerIOError.
+  void agree_on_error(const std::string& error, const std::exception_ptr& cause = nullptr) const;
+  /// The result of `query` (calls on this rank's file alone, no collective) for a file read on several
+  /// ranks, made the same on every rank: a failure on any rank, or a result (`what`) that differs between
+  /// ranks (they do not see the same file), throws on every rank. Without that, a rank that stops alone
+  /// leaves the others waiting in the next collective call.
+  template <class Query>
+  auto agreed(const std::string& what, Query&& query) const -> decltype(query());
+  // This rank's answers, not agreed (the public forms agree them):
+  bool exists_here(const std::string& path) const;
+  std::vector<hsize_t> dims_here(const std::string& name) const;
+  std::vector<std::string> datasets_here(const std::string& group) const;
+  bool has_attribute_here(const std::string& object, const std::string& name) const;
+  std::int64_t read_attribute_int_here(const std::string& object, const std::string& name) const;
+  std::string attributes_defect_here() const;
+  /// -1 for a dataset of reals, else the size of its integers.
+  std::int64_t element_code_here(const std::string& name) const;
   /// Rank 0 of a file being built: runs `step` unless an earlier step failed; keeps the first failure (a
-  /// core::IOError or memory exhausted) in build_error_ for the next agreement with the other ranks.
+  /// core::IOError, memory exhausted or any other exception, the last also in build_cause_) in build_error_
+  /// for the next agreement with the other ranks.
   template <class Step>
   void build(Step&& step);
   /// Only rank 0 holds a file being built; on the other ranks writes go to rank 0 or are skipped.
@@ -132,7 +154,8 @@ class H5File {
   hid_t file_ = -1;
   bool building_ = false;  // Mode::Create: built in memory on rank 0, written by close()
   bool closed_ = false;
-  std::string build_error_;  // rank 0 of a file being built: the first failure
+  std::string build_error_;         // rank 0 of a file being built: the first failure
+  std::exception_ptr build_cause_;  // ... where it was not an I/O failure or memory exhausted
   int exceptions_at_open_ = 0;
 };
 
