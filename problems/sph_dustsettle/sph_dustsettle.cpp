@@ -83,11 +83,13 @@ void declare(core::DeckSchema& s) {
       .max(3)
       .doc("2: the (x, z) slab of PL15; 3: the (x, y, z) column of HPL18 (x, y periodic).");
   s.real("settle.width")
+      .sets_state_size()
       .default_value(0.5)
       .greater_than(0.0)
       .unit("code length")
       .doc("Periodic extent of x (and y in 3D); the lattice spacing is width / nx.");
   s.real("settle.zmax")
+      .sets_state_size()
       .default_value(3.0)
       .greater_than(0.0)
       .unit("H")
@@ -97,8 +99,17 @@ void declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .unit("code density")
       .doc("Mid-plane gas density (eq. 55).");
-  s.real("settle.R0").default_value(5.0).greater_than(0.0).unit("code length").doc("Radius of the column (eq. 53).");
-  s.real("settle.H_over_R").default_value(0.05).greater_than(0.0).doc("Aspect ratio H / R0, c_s = H Omega0.");
+  s.real("settle.R0")
+      .sets_state_size()
+      .default_value(5.0)
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Radius of the column (eq. 53).");
+  s.real("settle.H_over_R")
+      .sets_state_size()
+      .default_value(0.05)
+      .greater_than(0.0)
+      .doc("Aspect ratio H / R0, c_s = H Omega0.");
   s.real("settle.relax_time").default_value(1000.0).min(0.0).unit("code time").doc("Gas-only relaxation (eq. 56).");
   s.real("settle.relax_damping").default_value(0.03).min(0.0).doc("Damping f of eq. 56 during the relaxation.");
   s.string("settle.grain_units")

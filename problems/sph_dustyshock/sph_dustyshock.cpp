@@ -20,14 +20,25 @@ void declare(core::DeckSchema& s) {
   sph::declare_dust_problem(s, "sph_dustyshock", sph::DragLaw::ConstantK, true);
   s.table("dustyshock", "Dusty Sod shock tube (PL15 sec. 4.2); gas states.");
   s.real("dustyshock.dx_left")
+      .sets_state_size()
       .default_value(0.001)
       .greater_than(0.0)
       .max(0.1)
       .unit("code length")
       .doc("Particle spacing on the left.");
-  s.real("dustyshock.rhog_left").default_value(1.0).greater_than(0.0).unit("code density").doc("Left gas density.");
+  s.real("dustyshock.rhog_left")
+      .sets_state_size()
+      .default_value(1.0)
+      .greater_than(0.0)
+      .unit("code density")
+      .doc("Left gas density.");
   s.real("dustyshock.P_left").default_value(1.0).greater_than(0.0).unit("code pressure").doc("Left pressure.");
-  s.real("dustyshock.rhog_right").default_value(0.125).greater_than(0.0).unit("code density").doc("Right gas density.");
+  s.real("dustyshock.rhog_right")
+      .sets_state_size()
+      .default_value(0.125)
+      .greater_than(0.0)
+      .unit("code density")
+      .doc("Right gas density.");
   s.real("dustyshock.P_right").default_value(0.125).greater_than(0.0).unit("code pressure").doc("Right pressure.");
 }
 

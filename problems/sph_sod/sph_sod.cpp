@@ -50,15 +50,31 @@ void declare(core::DeckSchema& s) {
   sph::declare_sph_problem(s, "sph_sod", {"adiabatic"});
   s.table("sod", "Shock-tube set-up.");
   s.integer("sod.dim").sets_state_size().default_value(1LL).min(1).max(3).doc("Dimension (y, z periodic for dim > 1).");
-  s.real("sod.dx_left").default_value(0.002).greater_than(0.0).unit("code length").doc("Particle spacing on the left.");
+  s.real("sod.dx_left")
+      .sets_state_size()
+      .default_value(0.002)
+      .greater_than(0.0)
+      .unit("code length")
+      .doc("Particle spacing on the left.");
   s.real("sod.cross_section")
+      .sets_state_size()
       .default_value(0.1)
       .greater_than(0.0)
       .unit("code length")
       .doc("Box length in y, z (dim > 1).");
-  s.real("sod.rho_left").default_value(1.0).greater_than(0.0).unit("code density").doc("Left density.");
+  s.real("sod.rho_left")
+      .sets_state_size()
+      .default_value(1.0)
+      .greater_than(0.0)
+      .unit("code density")
+      .doc("Left density.");
   s.real("sod.P_left").default_value(1.0).greater_than(0.0).unit("code pressure").doc("Left pressure.");
-  s.real("sod.rho_right").default_value(0.125).greater_than(0.0).unit("code density").doc("Right density.");
+  s.real("sod.rho_right")
+      .sets_state_size()
+      .default_value(0.125)
+      .greater_than(0.0)
+      .unit("code density")
+      .doc("Right density.");
   s.real("sod.P_right").default_value(0.1).greater_than(0.0).unit("code pressure").doc("Right pressure.");
 }
 

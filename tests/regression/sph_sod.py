@@ -2,7 +2,8 @@
 """sph_sod end to end (issue 6): the default deck runs, its snapshots are
 XDMF point clouds with positions, velocities, h, rho, u, P, mass, type and id,
 check.py finds the mean absolute density error within 1e-2 of the exact
-Riemann solution at t = 0.2, and a restarted run is bit-identical.
+Riemann solution at t = 0.2, a restarted run is bit-identical, and a restart that changes a key on
+which the particle count depends (the spacing, a density) is refused even with --force, naming the key.
 
 usage: sph_sod.py EXE WORKDIR
 """
@@ -46,4 +47,9 @@ with h5py.File(mote.list_snapshots(full)[-1]) as a, h5py.File(mote.list_snapshot
     same = all(a["particles/" + k][...].tobytes() == b["particles/" + k][...].tobytes()
                for k in ("position", "velocity", "density", "u", "h"))
     checks.check(same and a.attrs["time"] == b.attrs["time"], "restart after 40 of 80 steps is bit-identical")
+for key, value in (("sod.dx_left", "0.004"), ("sod.rho_right", "0.25")):
+    c = run([exe, "--restart", "latest", deck, f"{key}={value}", "--force", f"output.dir={split}"], expect=None)
+    checks.check(c.returncode == 2 and "the deck changes the size of the state" in c.stdout + c.stderr and
+                 f"{key} = " in c.stdout + c.stderr and f"in the checkpoint, {value} now" in c.stdout + c.stderr,
+                 f"a restart with {key} (it sets the particle count) changed is refused even with --force, naming it")
 sys.exit(checks.finish())
