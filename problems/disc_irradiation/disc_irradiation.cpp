@@ -35,6 +35,8 @@ void declare(core::DeckSchema& s) {
   s.real("irradiation.T_init").default_value(20.0).greater_than(0.0).unit("K").doc("Initial temperature.");
   s.boolean("irradiation.steady").default_value(true).doc("Relax to the steady state at the first step.");
   s.rule(io::requires_table("disc_irradiation", "radiation"));
+  // Its opacities are filled once, at set-up: band means at a temperature known then.
+  s.rule(io::requires_choice("disc_irradiation", "radiation.band_means", "fixed"));
 }
 
 /// rho_g = rho_0 (R / R_0)^p exp(-Z^2 / 2 H^2), H = h R, and rho_d = dust_to_gas rho_g

@@ -146,6 +146,7 @@ DiscTemperature::DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynam
                                                       deck.stellar_bin_edges_cm, deck.fld.band_edges_cm, deck.T_binning,
                                                       units)),
       kappa_gas_(deck.kappa_gas * units.mass / (units.length * units.length)),
+      band_means_at_cell_T_(deck.band_means_at_cell_T),
       c_V_(1.0 / ((settings.gamma - 1.0) * gas.config().cs2_to_T)),
       fld_(grid, deck.fld, constants_),
       star_(grid, deck.star, deck.stellar_bin_edges_cm, deck.fld.band_edges_cm, constants_),
@@ -165,7 +166,10 @@ DiscTemperature::DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynam
 void DiscTemperature::prepare_fields() {
   const GasFields& gas = gas_.fields();
   copy_dust_densities(dust_.W, rho_dust_);
-  radiation::fill_fld_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, fields_);
+  if (band_means_at_cell_T_)
+    radiation::fill_fld_opacities_at(opacities_, rho_dust_, gas.rho, kappa_gas_, state_.T, grid_, fields_);
+  else
+    radiation::fill_fld_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, fields_);
   radiation::fill_stellar_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, stellar_extinction_,
                                     stellar_absorption_);
   star_.heat(stellar_extinction_, stellar_absorption_, fields_.heating, fields_.scattering_source);

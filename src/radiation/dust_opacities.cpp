@@ -1,7 +1,10 @@
 // Dust opacities on the device and the solver's opacity fields (see dust_opacities.hpp).
 #include "mote/radiation/dust_opacities.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "mote/radiation/planck.hpp"
 
 namespace mote::radiation {
 
@@ -34,6 +37,26 @@ void weighted_sum(const std::string& name, const RealView2& kappa, const RealVie
       });
 }
 
+RealView1 edges_on_device(const std::vector<double>& edges_cm) {
+  RealView1 v("radiation::bin_edges_cm", edges_cm.size());
+  auto h = Kokkos::create_mirror_view(v);
+  for (std::size_t k = 0; k < edges_cm.size(); ++k) h(k) = edges_cm[k];
+  Kokkos::deep_copy(v, h);
+  return v;
+}
+
+/// band_first_bin from the band of every bin (non-decreasing, every band holding one).
+IntView1 band_ranges(const std::vector<int>& band_of_bin, int bands) {
+  IntView1 first("radiation::band_first_bin", bands + 1);
+  auto h = Kokkos::create_mirror_view(first);
+  const int nl = static_cast<int>(band_of_bin.size());
+  for (int b = 0; b <= bands; ++b)
+    h(b) = static_cast<int>(std::lower_bound(band_of_bin.begin(), band_of_bin.end(), b) - band_of_bin.begin());
+  h(bands) = nl;
+  Kokkos::deep_copy(first, h);
+  return first;
+}
+
 }  // namespace
 
 DustOpacities DustOpacities::from_table(const OpacityTable& table, const std::vector<double>& bin_edges_cm,
@@ -47,7 +70,9 @@ DustOpacities DustOpacities::from_table(const OpacityTable& table, const std::ve
   return {to_device("radiation::kappa_planck", means.planck_absorption, ns, nb, to_code),
           to_device("radiation::kappa_rosseland", means.rosseland_total, ns, nb, to_code),
           to_device("radiation::kappa_star_ext", ext, ns, nB, to_code),
-          to_device("radiation::kappa_star_abs", table.absorption, ns, nB, to_code)};
+          to_device("radiation::kappa_star_abs", table.absorption, ns, nB, to_code),
+          edges_on_device(bin_edges_cm),
+          band_ranges(fine_bin_bands(bin_edges_cm, band_edges_cm), nb)};
 }
 
 void fill_fld_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
@@ -55,6 +80,52 @@ void fill_fld_opacities(const DustOpacities& opacities, const RealView3& rho_dus
   weighted_sum("radiation::fld_absorption", opacities.planck_absorption, rho_dust, rho_gas, kappa_gas,
                fields.absorption);
   weighted_sum("radiation::fld_extinction", opacities.rosseland_total, rho_dust, rho_gas, kappa_gas, fields.extinction);
+}
+
+void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
+                           Real kappa_gas, const RealView2& T, const mesh::Grid& grid, const FldFields& fields) {
+  const int ns = static_cast<int>(opacities.stellar_absorption.extent(0));
+  const int nb = static_cast<int>(opacities.band_first_bin.extent(0)) - 1;
+  if (static_cast<int>(rho_dust.extent(2)) != ns || static_cast<int>(fields.absorption.extent(2)) != nb)
+    throw std::invalid_argument("radiation: species or band counts differ between opacities and fields");
+  auto k_abs = opacities.stellar_absorption, k_ext = opacities.stellar_extinction;
+  auto edges = opacities.bin_edges_cm;
+  auto first = opacities.band_first_bin;
+  auto absorption = fields.absorption, extinction = fields.extinction;
+  const int i0 = grid.i_begin(), i1 = grid.i_end() - 1, j0 = grid.j_begin(), j1 = grid.j_end() - 1;
+  par_for(
+      "radiation::fld_opacities_at_T", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        const Real t = T(math::min(math::max(i, i0), i1), math::min(math::max(j, j0), j1));
+        const Real gas = rho_gas(i, j) * kappa_gas;
+        const Real t3 = t * t * t;
+        Real P_a, G_a, P_b, G_b;  // at the short and the long edge of the bin
+        planck_at_edge(edges(0), t, P_a, G_a);
+        for (int b = 0; b < nb; ++b) {
+          const int l0 = first(b), l1 = first(b + 1);
+          Real wp = 0, sp = 0, wr = 0, sr = 0, plain_abs = 0, plain_inv = 0;
+          for (int l = l0; l < l1; ++l) {
+            Real ka = gas, kt = gas;
+            for (int s = 0; s < ns; ++s) {
+              ka += rho_dust(i, j, s) * k_abs(s, l);
+              kt += rho_dust(i, j, s) * k_ext(s, l);
+            }
+            kt = math::max(kt, Real(1e-300));
+            planck_at_edge(edges(l + 1), t, P_b, G_b);
+            const Real p = P_a - P_b, r = t3 * (G_a - G_b);
+            P_a = P_b;
+            G_a = G_b;
+            wp += p;
+            sp += p * ka;
+            wr += r;
+            sr += r / kt;
+            plain_abs += ka;
+            plain_inv += 1 / kt;
+          }
+          const Real n = l1 - l0;
+          absorption(i, j, b) = wp > 0 ? sp / wp : plain_abs / n;
+          extinction(i, j, b) = wr > 0 ? wr / sr : n / plain_inv;
+        }
+      });
 }
 
 void fill_stellar_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,

@@ -250,25 +250,11 @@ OpacityTable interpolate(const OpacityTable& table, const std::vector<double>& s
   return out;
 }
 
-namespace {
+namespace {}  // namespace
 
-/// Planck weight of a fine bin and its dB/dT weight (central difference).
-double planck_weight(double lo, double hi, double T) { return band_fraction(lo, hi, T); }
-double rosseland_weight(double lo, double hi, double T) {
-  const double e = 1e-4;
-  auto F = [&](double t) { return band_fraction(lo, hi, t) * t * t * t * t; };
-  return (F(T * (1 + e)) - F(T * (1 - e))) / (2 * e * T);
-}
-
-}  // namespace
-
-BandMeans band_means(const OpacityTable& fine, const std::vector<double>& fine_edges_cm,
-                     const std::vector<double>& band_edges_cm, double T) {
-  const int nl = fine.wavelengths(), nb = static_cast<int>(band_edges_cm.size()) - 1;
-  if (static_cast<int>(fine_edges_cm.size()) != nl + 1)
-    throw std::invalid_argument("radiation: the fine bins need one more edge than the table has wavelengths");
+std::vector<int> fine_bin_bands(const std::vector<double>& fine_edges_cm, const std::vector<double>& band_edges_cm) {
+  const int nl = static_cast<int>(fine_edges_cm.size()) - 1, nb = static_cast<int>(band_edges_cm.size()) - 1;
   if (nb < 1) throw std::invalid_argument("radiation: at least one band is needed");
-  if (!(T > 0.0)) throw std::invalid_argument("radiation: band means need T > 0");
   std::vector<int> band(nl);
   std::vector<int> members(nb, 0);
   for (int l = 0; l < nl; ++l) {
@@ -281,14 +267,26 @@ BandMeans band_means(const OpacityTable& fine, const std::vector<double>& fine_e
   for (int b = 0; b < nb; ++b)
     if (members[b] == 0)
       throw std::invalid_argument("radiation: band " + std::to_string(b) + " holds no fine wavelength bin");
+  return band;
+}
+
+BandMeans band_means(const OpacityTable& fine, const std::vector<double>& fine_edges_cm,
+                     const std::vector<double>& band_edges_cm, double T) {
+  const int nl = fine.wavelengths(), nb = static_cast<int>(band_edges_cm.size()) - 1;
+  if (static_cast<int>(fine_edges_cm.size()) != nl + 1)
+    throw std::invalid_argument("radiation: the fine bins need one more edge than the table has wavelengths");
+  if (!(T > 0.0)) throw std::invalid_argument("radiation: band means need T > 0");
+  const std::vector<int> band = fine_bin_bands(fine_edges_cm, band_edges_cm);
+  std::vector<int> members(nb, 0);
+  for (const int b : band) ++members[b];
   BandMeans m;
   m.planck_absorption.assign(fine.sizes() * nb, 0.0);
   m.rosseland_total.assign(fine.sizes() * nb, 0.0);
   for (int a = 0; a < fine.sizes(); ++a) {
     std::vector<double> wp(nb, 0.0), sp(nb, 0.0), wr(nb, 0.0), sr(nb, 0.0), plain_abs(nb, 0.0), plain_inv(nb, 0.0);
     for (int l = 0; l < nl; ++l) {
-      const double p = planck_weight(fine_edges_cm[l], fine_edges_cm[l + 1], T);
-      const double r = rosseland_weight(fine_edges_cm[l], fine_edges_cm[l + 1], T);
+      const double p = band_fraction(fine_edges_cm[l], fine_edges_cm[l + 1], T);
+      const double r = rosseland_band_weight(fine_edges_cm[l], fine_edges_cm[l + 1], T);
       const double total = fine.k_abs(a, l) + fine.k_sca(a, l);
       wp[band[l]] += p;
       sp[band[l]] += p * fine.k_abs(a, l);

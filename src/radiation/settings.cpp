@@ -60,7 +60,18 @@ void declare_star_and_opacity(core::DeckSchema& s) {
   s.real("radiation.beta").default_value(1.0).min(0.0).doc("Power-law index of Q_abs = (2 pi a / lambda)^beta.");
   s.real("radiation.rho_grain").default_value(1.6).greater_than(0.0).unit("g/cm^3").doc("Grain density (power law).");
   s.real("radiation.kappa_gas").default_value(0.0).min(0.0).unit("cm^2/g").doc("Gas opacity floor (RBO24 sec. 7).");
-  s.real("radiation.T_binning").default_value(100.0).greater_than(0.0).unit("K").doc("Temperature of the band means.");
+  s.string("radiation.band_means")
+      .default_value(std::string("fixed"))
+      .one_of({"fixed", "local"})
+      .doc(
+          "Opacities of the FLD bands from the stellar bins: Planck (absorption) and Rosseland (total) means at "
+          "radiation.T_binning, or per cell at its temperature for its mixture of species (RBO24 sec. 4.2, as "
+          "cuDisc), taken at every temperature update.");
+  s.real("radiation.T_binning")
+      .default_value(100.0)
+      .greater_than(0.0)
+      .unit("K")
+      .doc("Temperature of the band means with band_means = \"fixed\".");
 }
 
 void check_radiation(const core::Deck& d, core::DeckCheck& check) {
@@ -113,6 +124,7 @@ RadiationDeck from_deck(const core::Deck& d, const units::UnitSystem& units) {
   r.rho_grain = d.real("radiation.rho_grain");
   r.kappa_gas = d.real("radiation.kappa_gas");
   r.T_binning = d.real("radiation.T_binning");
+  r.band_means_at_cell_T = d.string("radiation.band_means") == "local";
   return r;
 }
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """disc_irradiation: VALIDATION D2 from the shipped deck, through the problem's
 own check (T within 1 % of T_star (R_star / 2r)^(1/2) in every optically thin
-cell), and a restart from its checkpoint that must reproduce the steady state
-bit for bit.
+cell), a restart from its checkpoint that must reproduce the steady state
+bit for bit, and the refusal of radiation.band_means = "local".
 
 usage: disc_irradiation_check.py EXE WORKDIR
 """
@@ -51,4 +51,9 @@ checks.check(int(steps[-1]) == 2, f"the restarted run took step 2 (last history 
 a = mote.read_snapshot(first[-1]).fields["T"]
 b = mote.last_snapshot(restarted).fields["T"]
 checks.check(np.array_equal(a, b), "restart from the step-1 checkpoint reproduces T bit for bit")
+local = os.path.join(work, "local_band_means")
+shutil.rmtree(local, ignore_errors=True)
+c = run([exe, deck, f"output.dir={local}", 'radiation.band_means="local"'], expect=None)
+checks.check(c.returncode == 2 and 'disc_irradiation needs "fixed"' in c.stdout + c.stderr and not os.path.exists(local),
+             "band_means = \"local\" (opacities filled once, at set-up) is refused before any output (exit 2)")
 sys.exit(checks.finish())

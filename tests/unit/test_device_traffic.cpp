@@ -268,36 +268,39 @@ TEST(DeviceTraffic, DiscTemperatureUpdatesReadBackOnlyTheSolverConvergenceMeasur
   const std::string radiation =
       "[radiation]\nbands = 4\nstellar_bins = 20\ntolerance = 1e-8\n"
       "[temperature]\nmax_growth = 1.5\n";
-  const auto deck =
-      core::Deck::parse(std::string(kDiscDeck) + radiation, "test_device_traffic", schema, {"dust.sizes=[1e-4, 1e-3]"});
-  disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
-                           disc::DiscSimulation::well_mixed({1e-2, 1e-2}, 1e-40));
-  const auto fld_iterations = [&sim] {
-    for (const auto& d : sim.diagnostics())
-      if (d.name == "fld_iterations") return d.value;
-    return -1.0;
-  };
-  double t = 0;
-  take_steps(sim, 5, t);
-  const long long updates0 = sim.temperature()->updates();
-  const double iterations0 = fld_iterations();
-  TrafficCounter counter;
-  take_steps(sim, 30, t);
-  const long long updates = sim.temperature()->updates() - updates0;
-  const int iterations = static_cast<int>(fld_iterations() - iterations0);
-  ASSERT_GT(updates, 0) << "the steps must include temperature updates";
-  int read_backs = 0, internal = 0;
-  for (const auto& c : counter.copy_list()) {
-    if (c.bytes <= 40)
-      ++read_backs;
-    else
-      ++internal;
+  for (const std::string means : {"fixed", "local"}) {  // band means at T_binning, or per cell at every update
+    SCOPED_TRACE("radiation.band_means = " + means);
+    const auto deck = core::Deck::parse(std::string(kDiscDeck) + radiation, "test_device_traffic", schema,
+                                        {"dust.sizes=[1e-4, 1e-3]", "radiation.band_means=\"" + means + "\""});
+    disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+                             disc::DiscSimulation::well_mixed({1e-2, 1e-2}, 1e-40));
+    const auto fld_iterations = [&sim] {
+      for (const auto& d : sim.diagnostics())
+        if (d.name == "fld_iterations") return d.value;
+      return -1.0;
+    };
+    double t = 0;
+    take_steps(sim, 5, t);
+    const long long updates0 = sim.temperature()->updates();
+    const double iterations0 = fld_iterations();
+    TrafficCounter counter;
+    take_steps(sim, 30, t);
+    const long long updates = sim.temperature()->updates() - updates0;
+    const int iterations = static_cast<int>(fld_iterations() - iterations0);
+    ASSERT_GT(updates, 0) << "the steps must include temperature updates";
+    int read_backs = 0, internal = 0;
+    for (const auto& c : counter.copy_list()) {
+      if (c.bytes <= 40)
+        ++read_backs;
+      else
+        ++internal;
+    }
+    std::printf("%lld updates, %d iterations: %d read-backs of <= 40 B, %d device-internal copies; %s\n", updates,
+                iterations, read_backs, internal, counter.report().c_str());
+    // One per iteration, plus the initial residual and the true-residual confirmation of each solve.
+    EXPECT_LE(read_backs, iterations + 2 * updates) << counter.report();
+    EXPECT_LE(internal, 7 * updates) << counter.report();
+    for (const auto& [label, count] : counter.allocation_labels())
+      EXPECT_TRUE(label == "Host:iw" || label == "Host:Host level pointers") << label << " x " << count;
   }
-  std::printf("%lld updates, %d iterations: %d read-backs of <= 40 B, %d device-internal copies; %s\n", updates,
-              iterations, read_backs, internal, counter.report().c_str());
-  // One per iteration, plus the initial residual and the true-residual confirmation of each solve.
-  EXPECT_LE(read_backs, iterations + 2 * updates) << counter.report();
-  EXPECT_LE(internal, 7 * updates) << counter.report();
-  for (const auto& [label, count] : counter.allocation_labels())
-    EXPECT_TRUE(label == "Host:iw" || label == "Host:Host level pointers") << label << " x " << count;
 }

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <utility>
 #include <vector>
 
 #include "dense_reference.hpp"
@@ -54,6 +55,22 @@ TEST(Planck, BandsCoverAllOfB) {
       sum += radiation::band_fraction(b == 0 ? 0.0 : edges[b], b + 2 == edges.size() ? 0.0 : edges[b + 1], T);
     EXPECT_NEAR(sum, 1.0, 1e-14) << T;
   }
+}
+
+// The Rosseland weight T^3 (G_lo - G_hi) is d[f(T) T^4]/dT: against a central difference (relative
+// step 1e-5) of the band fraction times T^4 to 1e-7, and over all wavelengths 4 T^3.
+TEST(Planck, RosselandWeightIsTheTemperatureDerivative) {
+  for (double T : {10.0, 100.0, 1000.0})
+    for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{{1e-5, 1e-4}, {1e-4, 3e-3}, {3e-3, 0.3}}) {
+      const double e = 1e-5, up = T * (1 + e), down = T * (1 - e);
+      const double numeric = (radiation::band_fraction(lo, hi, up) * std::pow(up, 4) -
+                              radiation::band_fraction(lo, hi, down) * std::pow(down, 4)) /
+                             (2 * e * T);
+      const double analytic = radiation::rosseland_band_weight(lo, hi, T);
+      // The difference quotient loses the far Wien tail (1 - P below 1e-16): an absolute 1e-12 of 4 T^3 too.
+      EXPECT_NEAR(analytic, numeric, 1e-7 * std::fabs(numeric) + 4e-12 * T * T * T) << T << " " << lo << " " << hi;
+    }
+  EXPECT_NEAR(radiation::rosseland_band_weight(0.0, 0.0, 50.0), 4 * 50.0 * 50.0 * 50.0, 1e-9);
 }
 
 TEST(FluxLimiter, ThickAndThinLimits) {

@@ -6,13 +6,17 @@
 // rays' solid angles, and an opaque shell takes all the light.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "mote/core/units.hpp"
 #include "mote/radiation/dust_opacities.hpp"
 #include "mote/radiation/fld.hpp"
 #include "mote/radiation/irradiation.hpp"
+#include "mote/radiation/opacity.hpp"
 
 namespace {
 
@@ -169,6 +173,88 @@ TEST(DustOpacities, FieldsAreDensityWeightedSumsWithTheGasFloor) {
   EXPECT_NEAR(sa(5, 2, 7), absorption, 1e-12 * absorption);
   RealView3 one_species("rho_1", grid.nr_total(), grid.nt_total(), 1);
   EXPECT_THROW(radiation::fill_fld_opacities(kappa, one_species, rho_gas, 1e-3, fields), std::invalid_argument);
+}
+
+/// radiation.band_means = "local" (RBO24 sec. 4.2): two species with opacities that vary along the
+/// stellar bins, in gas with the opacity floor, and a temperature that differs from cell to cell
+/// (20-200 K; 0 in the ghost cells). In every cell the FLD band's absorption and extinction are the
+/// host band_means (Planck of absorption, Rosseland of the total) of the cell's mixture at its own
+/// temperature, to 1e-12; ghost cells take the nearest active cell's temperature; and with one species
+/// and no gas at T_binning everywhere they are the fixed means.
+TEST(DustOpacities, LocalBandMeansAreTheMixturesMeansAtTheCellTemperature) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto bins = stellar_bins();
+  std::vector<double> centres;
+  for (std::size_t k = 0; k + 1 < bins.size(); ++k) centres.push_back(std::sqrt(bins[k] * bins[k + 1]));
+  const int nl = static_cast<int>(centres.size()), nb = static_cast<int>(fld_bands.size()) - 1;
+  auto table = radiation::grey_opacity({1e-4, 1e-2}, centres, 0.0, 0.0);
+  for (int l = 0; l < nl; ++l) {
+    const double x = 1e-4 / centres[l];
+    table.absorption[l] = 3.0 * std::pow(x, 1.5);
+    table.scattering[l] = 1.0 * x * x;
+    table.absorption[nl + l] = 10.0 * std::pow(x, 0.5) + 0.1;
+    table.scattering[nl + l] = 4.0 / (1.0 + x);
+  }
+  const auto cgs = units::UnitSystem::cgs_units();
+  const auto kappa = radiation::DustOpacities::from_table(table, bins, fld_bands, 100.0, cgs);
+  const double rho1 = 1e-12, rho2 = 2e-12, rho_g = 1e-10, kappa_gas = 1e-3;
+  RealView3 rho_dust("rho_dust", grid.nr_total(), grid.nt_total(), 2);
+  RealView2 rho_gas("rho_gas", grid.nr_total(), grid.nt_total()), T("T", grid.nr_total(), grid.nt_total());
+  auto rd = Kokkos::create_mirror_view(rho_dust);
+  auto Th = Kokkos::create_mirror_view(T);
+  for (int i = 0; i < grid.nr_total(); ++i)
+    for (int j = 0; j < grid.nt_total(); ++j) {
+      rd(i, j, 0) = rho1;
+      rd(i, j, 1) = rho2;
+      const bool active = i >= grid.i_begin() && i < grid.i_end() && j >= grid.j_begin() && j < grid.j_end();
+      Th(i, j) = active ? 20.0 + 4.5 * (i - grid.i_begin()) + 0.3 * (j - grid.j_begin()) : 0.0;
+    }
+  Kokkos::deep_copy(rho_dust, rd);
+  Kokkos::deep_copy(rho_gas, rho_g);
+  Kokkos::deep_copy(T, Th);
+  radiation::FldSettings settings;
+  settings.band_edges_cm = fld_bands;
+  radiation::FldSolver fld(grid, settings, radiation::RadiationConstants::in(cgs));
+  auto fields = fld.make_fields();
+  radiation::fill_fld_opacities_at(kappa, rho_dust, rho_gas, kappa_gas, T, grid, fields);
+  auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
+  auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
+  // The mixture as one "species" per unit volume: absorption with the gas floor, scattering without.
+  auto mixture = radiation::grey_opacity({1.0}, centres, 0.0, 0.0);
+  for (int l = 0; l < nl; ++l) {
+    mixture.absorption[l] = rho1 * table.absorption[l] + rho2 * table.absorption[nl + l] + rho_g * kappa_gas;
+    mixture.scattering[l] = rho1 * table.scattering[l] + rho2 * table.scattering[nl + l];
+  }
+  double worst = 0.0;
+  for (const auto& [i, j] : std::vector<std::pair<int, int>>{{grid.i_begin(), grid.j_begin()},
+                                                             {grid.i_begin() + 7, grid.j_begin() + 3},
+                                                             {grid.i_end() - 1, grid.j_end() - 1},
+                                                             {grid.i_begin() + 20, grid.j_end() - 5}}) {
+    const auto expected = radiation::band_means(mixture, bins, fld_bands, Th(i, j));
+    for (int b = 0; b < nb; ++b) {
+      worst = std::max(worst, std::fabs(a(i, j, b) / expected.planck_absorption[b] - 1));
+      worst = std::max(worst, std::fabs(x(i, j, b) / expected.rosseland_total[b] - 1));
+    }
+  }
+  std::cout << "local band means against the host means of the mixture: " << worst << "\n";
+  EXPECT_LE(worst, 1e-12);
+  for (int b = 0; b < nb; ++b) {  // a ghost cell below the first active cell: the same temperature, the same means
+    EXPECT_EQ(a(grid.i_begin() - 1, grid.j_begin(), b), a(grid.i_begin(), grid.j_begin(), b));
+    EXPECT_EQ(x(grid.i_begin(), grid.j_begin() - 1, b), x(grid.i_begin(), grid.j_begin(), b));
+  }
+  // One species, no gas, T = T_binning everywhere: the fixed means.
+  Kokkos::deep_copy(Kokkos::subview(rho_dust, Kokkos::ALL, Kokkos::ALL, 1), 0.0);
+  Kokkos::deep_copy(T, 100.0);
+  radiation::fill_fld_opacities_at(kappa, rho_dust, rho_gas, 0.0, T, grid, fields);
+  auto a_local = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
+  auto x_local = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
+  radiation::fill_fld_opacities(kappa, rho_dust, rho_gas, 0.0, fields);
+  auto a_fixed = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
+  auto x_fixed = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
+  for (int b = 0; b < nb; ++b) {
+    EXPECT_NEAR(a_local(5, 4, b), a_fixed(5, 4, b), 1e-12 * a_fixed(5, 4, b));
+    EXPECT_NEAR(x_local(5, 4, b), x_fixed(5, 4, b), 1e-12 * x_fixed(5, 4, b));
+  }
 }
 
 TEST(Irradiation, BadStarIsRefused) {

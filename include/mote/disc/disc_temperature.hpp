@@ -94,7 +94,8 @@ class DiscTemperature {
   radiation::RadiationConstants constants_;
   radiation::DustOpacities opacities_;
   Real kappa_gas_;  // code units
-  Real c_V_;        // code specific energy per K
+  bool band_means_at_cell_T_;
+  Real c_V_;  // code specific energy per K
   radiation::FldSolver fld_;
   radiation::StellarIrradiation star_;
   radiation::FldFields fields_;

@@ -71,4 +71,8 @@ struct BandMeans {
 BandMeans band_means(const OpacityTable& fine, const std::vector<double>& fine_edges_cm,
                      const std::vector<double>& band_edges_cm, double T);
 
+/// The coarse band of every fine bin (by its central wavelength; the outer band edges stand for 0
+/// and infinity): non-decreasing. Throws std::invalid_argument for a band that holds no fine bin.
+std::vector<int> fine_bin_bands(const std::vector<double>& fine_edges_cm, const std::vector<double>& band_edges_cm);
+
 }  // namespace mote::radiation

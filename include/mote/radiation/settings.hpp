@@ -27,6 +27,7 @@ struct RadiationDeck {
   double rho_grain = 1.6;                   // g/cm^3, power-law
   double kappa_gas = 0.0;                   // gas opacity floor, cm^2 per g of gas
   double T_binning = 100.0;                 // K, for the band means
+  bool band_means_at_cell_T = false;        // band_means = "local": per cell at its temperature
 
   /// The opacity table at the species' sizes and the stellar bins' centres.
   OpacityTable opacities(const std::vector<double>& sizes_cm) const;
