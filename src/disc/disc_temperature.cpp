@@ -184,6 +184,8 @@ void DiscTemperature::solve(double elapsed) {
     const auto relaxed = fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance);
     iterations_ += relaxed.iterations;
     solve_seconds_ += relaxed.solve_seconds;
+    last_iterations_ = relaxed.iterations;
+    last_residual_ = relaxed.last_residual;
     logging::info("temperature: steady state after ", relaxed.solves, " solves, ", relaxed.iterations,
                   " BiCGStab iterations, ", relaxed.solve_seconds, " s in the linear solver");
   } else {
@@ -192,6 +194,8 @@ void DiscTemperature::solve(double elapsed) {
       logging::warn("temperature update ", updates_ + 1, ": ", report.summary());
     iterations_ += report.total_iterations();
     for (const auto& attempt : report.attempts) solve_seconds_ += attempt.seconds;
+    last_iterations_ = report.total_iterations();
+    last_residual_ = report.last().residual;
   }
 }
 
@@ -234,6 +238,8 @@ void DiscTemperature::save_state(io::H5File& file, const std::string& group) con
   file.write_attribute(group + "/T_E", "next_interval", next_interval_);
   file.write_attribute(group + "/T_E", "iterations", iterations_);
   file.write_attribute(group + "/T_E", "solve_seconds", solve_seconds_);
+  file.write_attribute(group + "/T_E", "last_iterations", last_iterations_);
+  file.write_attribute(group + "/T_E", "last_residual", last_residual_);
   file.write_attribute(group + "/T_E", "absorbed", absorbed_);
   file.write_attribute(group + "/T_E", "open_luminosity", open_luminosity_);
 }
@@ -248,6 +254,10 @@ void DiscTemperature::load_state(const io::H5File& file, const std::string& grou
   next_interval_ = attribute("next_interval");
   iterations_ = attribute("iterations");
   solve_seconds_ = attribute("solve_seconds");
+  if (file.has_attribute(group + "/T_E", "last_residual")) {  // checkpoints before these columns: zeros
+    last_iterations_ = attribute("last_iterations");
+    last_residual_ = attribute("last_residual");
+  }
   absorbed_ = attribute("absorbed");
   open_luminosity_ = attribute("open_luminosity");
   if (updates_ > 0) {
@@ -261,6 +271,8 @@ std::vector<io::Diagnostic> DiscTemperature::diagnostics() const {
           {"temperature_change", change_},
           {"fld_iterations", iterations_},
           {"fld_solve_s", solve_seconds_},
+          {"fld_last_iterations", last_iterations_},
+          {"fld_last_residual", last_residual_},
           {"absorbed_star", absorbed_},
           {"open_luminosity", open_luminosity_}};
 }

@@ -450,6 +450,7 @@ FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, 
     ++done.solves;
     done.iterations += report.total_iterations();
     for (const auto& attempt : report.attempts) done.solve_seconds += attempt.seconds;
+    done.last_residual = report.last().residual;
     change = largest_relative_change(grid_, state.T, T_previous_);
     if (change <= max_change) return done;
   }

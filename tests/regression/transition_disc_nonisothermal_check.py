@@ -18,6 +18,9 @@ Checks:
 import os
 import shutil
 import sys
+import tomllib
+
+import numpy as np
 
 from harness import Checks, run
 import mote
@@ -36,6 +39,12 @@ checks.check("restarted from" in q.stdout, "the second part restarted from a che
 h = mote.read_history(os.path.join(full, "history.txt"))
 calls, steps = int(h["temperature_calls"][-1]), int(h["step"][-1])
 checks.check(1 < calls < steps, f"temperature on its adaptive schedule: {calls} calls in {steps} steps")
+tolerance = tomllib.loads(open(deck).read())["radiation"]["tolerance"]
+residual, its = h["fld_last_residual"], h["fld_last_iterations"]
+checks.check(np.all(residual <= tolerance) and np.max(its) >= 1,
+             f"history: every row's last temperature solve converged, fld_last_residual <= {max(residual):.2e} "
+             f"(<= radiation.tolerance {tolerance:g}), {int(min(its))}-{int(max(its))} iterations (0: the start "
+             "already within tolerance)")
 
 check_py = os.path.join(os.path.dirname(deck), "check.py")
 c = run([sys.executable, check_py, full], expect=None)
@@ -50,7 +59,8 @@ checks.check(not diff and "gas_T" in x.fields and "rad_E" in x.fields,
              f"restart: all {len(x.fields)} snapshot fields bit-identical, gas_T and rad_E included" +
              (f" (differ: {diff[:5]})" if diff else ""))
 hs = mote.read_history(os.path.join(split, "history.txt"))
-cols = ["step", "time", "temperature_calls", "temperature_updates", "coagulation_calls", "dust_mass"]
+cols = ["step", "time", "temperature_calls", "temperature_updates", "coagulation_calls", "dust_mass",
+        "fld_last_iterations", "fld_last_residual"]
 same = [c for c in cols if h[c].tobytes() != hs[c].tobytes()]
 checks.check(not same, "restart: history schedule columns identical (" + ", ".join(cols) + ")" +
              (f"; differ: {same}" if same else ""))

@@ -105,6 +105,8 @@ class DiscTemperature {
   long long updates_ = 0;
   double change_ = 0.0, next_interval_ = 0.0;
   double iterations_ = 0.0, solve_seconds_ = 0.0, absorbed_ = 0.0, open_luminosity_ = 0.0;
+  // The last update's BiCGStab iterations (all solves of the first steady state) and final max fractional residual.
+  double last_iterations_ = 0.0, last_residual_ = 0.0;
 };
 
 }  // namespace mote::disc

@@ -112,6 +112,7 @@ class FldSolver {
     int solves = 0;
     int iterations = 0;  // BiCGStab iterations over all solves and rungs
     double solve_seconds = 0.0;
+    double last_residual = 0.0;  // max fractional residual of the last solve's last rung
   };
   /// Steady state with the lagged limiter and Planck factors iterated to
   /// consistency: steps with dt = infinity until no active cell's T changes by
