@@ -21,6 +21,7 @@
 #include "mote/io/problem_main.hpp"
 #include "mote/mesh/grid_output.hpp"
 #include "mote/radiation/fld.hpp"
+#include "mote/radiation/fld_state_io.hpp"
 #include "mote/radiation/settings.hpp"
 
 namespace {
@@ -152,31 +153,12 @@ class FldBenchmark : public io::Simulation {
   }
 
   void save_state(io::H5File& file) const override {
-    View<Real****> packed("fld_benchmarks::packed", grid_.nr_total(), grid_.nt_total(), 1, fld_.bands() + 1);
-    const auto T = state_.T;
-    const auto E = state_.E;
-    const int nb = fld_.bands();
-    par_for(
-        "fld_benchmarks::pack", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-          packed(i, j, 0, 0) = T(i, j);
-          for (int b = 0; b < nb; ++b) packed(i, j, 0, 1 + b) = E(i, j, b);
-        });
-    mesh::write_state(file, "/state/radiation", grid_, packed);
+    radiation::write_fld_state(file, "/state/radiation", grid_, state_);
     file.write_attribute("/state", "fld_iterations", static_cast<std::int64_t>(iterations_));
   }
 
   void load_state(const io::H5File& file) override {
-    View<Real****> packed("fld_benchmarks::packed", grid_.nr_total(), grid_.nt_total(), 1, fld_.bands() + 1);
-    mesh::read_state(file, "/state/radiation", grid_, packed);
-    const auto T = state_.T;
-    const auto E = state_.E;
-    const int nb = fld_.bands();
-    par_for(
-        "fld_benchmarks::unpack", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
-        KOKKOS_LAMBDA(int i, int j) {
-          T(i, j) = packed(i, j, 0, 0);
-          for (int b = 0; b < nb; ++b) E(i, j, b) = packed(i, j, 0, 1 + b);
-        });
+    radiation::read_fld_state(file, "/state/radiation", grid_, state_);
     iterations_ = file.read_attribute_int("/state", "fld_iterations");
   }
 

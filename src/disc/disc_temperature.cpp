@@ -12,6 +12,7 @@
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/mesh/grid_output.hpp"
+#include "mote/radiation/fld_state_io.hpp"
 
 namespace mote::disc {
 
@@ -96,32 +97,6 @@ void temperature_with_edge_ghosts(const mesh::Grid& grid, const RealView2& T, co
   par_for(
       "disc::temperature_ghosts", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
         T_gas(i, j) = T(i < ib ? ib : (i > ie ? ie : i), j < jb ? jb : (j > je ? je : j));
-      });
-}
-
-/// T and E packed into one (nr_total, nt_total, 1, 1 + nb) state for mesh::write_state, and back.
-View<Real****> pack(const mesh::Grid& grid, const radiation::FldState& state) {
-  const int nb = static_cast<int>(state.E.extent(2));
-  View<Real****> packed("disc::temperature_packed", grid.nr_total(), grid.nt_total(), 1, 1 + nb);
-  const auto T = state.T;
-  const auto E = state.E;
-  par_for(
-      "disc::temperature_pack", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-        packed(i, j, 0, 0) = T(i, j);
-        for (int b = 0; b < nb; ++b) packed(i, j, 0, 1 + b) = E(i, j, b);
-      });
-  return packed;
-}
-
-void unpack(const mesh::Grid& grid, const View<Real****>& packed, const radiation::FldState& state) {
-  const int nb = static_cast<int>(state.E.extent(2));
-  const auto T = state.T;
-  const auto E = state.E;
-  par_for(
-      "disc::temperature_unpack", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
-      KOKKOS_LAMBDA(int i, int j) {
-        T(i, j) = packed(i, j, 0, 0);
-        for (int b = 0; b < nb; ++b) E(i, j, b) = packed(i, j, 0, 1 + b);
       });
 }
 
@@ -232,7 +207,7 @@ void DiscTemperature::write_snapshot(io::SnapshotWriter& out) const {
 }
 
 void DiscTemperature::save_state(io::H5File& file, const std::string& group) const {
-  mesh::write_state(file, group + "/T_E", grid_, pack(grid_, state_));
+  radiation::write_fld_state(file, group + "/T_E", grid_, state_);
   file.write_attribute(group + "/T_E", "updates", static_cast<std::int64_t>(updates_));
   file.write_attribute(group + "/T_E", "change", change_);
   file.write_attribute(group + "/T_E", "next_interval", next_interval_);
@@ -245,9 +220,7 @@ void DiscTemperature::save_state(io::H5File& file, const std::string& group) con
 }
 
 void DiscTemperature::load_state(const io::H5File& file, const std::string& group) {
-  View<Real****> packed("disc::temperature_packed", grid_.nr_total(), grid_.nt_total(), 1, 1 + fld_.bands());
-  mesh::read_state(file, group + "/T_E", grid_, packed);
-  unpack(grid_, packed, state_);
+  radiation::read_fld_state(file, group + "/T_E", grid_, state_);
   const auto attribute = [&](const char* name) { return file.read_attribute_real(group + "/T_E", name); };
   updates_ = file.read_attribute_int(group + "/T_E", "updates");
   change_ = attribute("change");
