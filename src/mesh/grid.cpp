@@ -36,6 +36,13 @@ std::vector<double> block_edges(double lo, double split, double hi, int n, int n
   return inner;
 }
 
+std::vector<double> log_block_edges(double lo, double split, double hi, int n, int n_inner) {
+  auto inner = log_edges(lo, split, n_inner);
+  const auto outer = log_edges(split, hi, n - n_inner);
+  inner.insert(inner.end(), outer.begin() + 1, outer.end());
+  return inner;
+}
+
 namespace {
 
 /// An explicit edge list `key` must hold `n_key` + 1 strictly increasing values.
@@ -48,11 +55,22 @@ void check_edge_list(const core::Deck& d, core::DeckCheck& check, const std::str
     if (!(e[k] > e[k - 1])) return check.fail(key, "edges must increase strictly");
 }
 
+void check_radial_blocks(const core::Deck& d, core::DeckCheck& check) {
+  const double split = d.real("grid.R_split");
+  if (!(split > d.real("grid.R_in") && split < d.real("grid.R_out")))
+    check.fail("grid.R_split", "r_spacing = \"log_blocks\" needs it between " + check.quote("grid.R_in") + " and " +
+                                   check.quote("grid.R_out"));
+  const long long inner = d.integer("grid.r_block_cells");
+  if (inner < 1 || inner >= d.integer("grid.nr"))
+    check.fail("grid.r_block_cells", "r_spacing = \"log_blocks\" needs 1 <= it < " + check.quote("grid.nr"));
+}
+
 void check_radial_edges(const core::Deck& d, core::DeckCheck& check) {
-  if (d.string("grid.r_spacing") == "edges")
-    check_edge_list(d, check, "grid.r_edges", "grid.nr");
-  else if (!(d.real("grid.R_out") > d.real("grid.R_in")))
-    check.fail("grid.R_out", "must exceed " + check.quote("grid.R_in"));
+  const std::string& rs = d.string("grid.r_spacing");
+  if (rs == "edges") return check_edge_list(d, check, "grid.r_edges", "grid.nr");
+  if (!(d.real("grid.R_out") > d.real("grid.R_in")))
+    return check.fail("grid.R_out", "must exceed " + check.quote("grid.R_in"));
+  if (rs == "log_blocks") check_radial_blocks(d, check);
 }
 
 void check_theta_edges(const core::Deck& d, core::DeckCheck& check) {
@@ -87,8 +105,12 @@ void GridSpec::declare(core::DeckSchema& s) {
   s.real("grid.R_out").greater_than(0.0).unit("code length").doc("Outer radial edge (> R_in).");
   s.string("grid.r_spacing")
       .default_value(std::string("log"))
-      .one_of({"log", "linear", "edges"})
-      .doc("Radial spacing; \"edges\" takes grid.r_edges.");
+      .one_of({"log", "linear", "log_blocks", "edges"})
+      .doc(
+          "Radial spacing: log; linear; log_blocks (two logarithmic blocks split at R_split, r_block_cells inside "
+          "it: a refined inner rim); edges (grid.r_edges).");
+  s.real("grid.R_split").default_value(0.0).unit("code length").doc("Block boundary for r_spacing = \"log_blocks\".");
+  s.integer("grid.r_block_cells").default_value(0LL).min(0).doc("Cells inside R_split for r_spacing = \"log_blocks\".");
   s.real_array("grid.r_edges")
       .default_value(std::vector<double>{})
       .min(0.0)
@@ -133,11 +155,12 @@ GridSpec GridSpec::from_deck(const core::Deck& d) {
   const double R_in = d.real("grid.R_in"), R_out = d.real("grid.R_out");
   const std::string& rs = d.string("grid.r_spacing");
   g.r_log = rs != "linear";
-  if (rs == "edges") {
-    g.r_edges = d.real_array("grid.r_edges");
-  } else {
-    g.r_edges = rs == "log" ? log_edges(R_in, R_out, g.nr) : linear_edges(R_in, R_out, g.nr);
-  }
+  if (rs == "edges") g.r_edges = d.real_array("grid.r_edges");
+  if (rs == "log") g.r_edges = log_edges(R_in, R_out, g.nr);
+  if (rs == "linear") g.r_edges = linear_edges(R_in, R_out, g.nr);
+  if (rs == "log_blocks")
+    g.r_edges =
+        log_block_edges(R_in, d.real("grid.R_split"), R_out, g.nr, static_cast<int>(d.integer("grid.r_block_cells")));
   const double t0 = d.real("grid.theta_min"), t1 = d.real("grid.theta_max");
   const std::string& ts = d.string("grid.theta_spacing");
   if (ts == "linear") g.theta_edges = linear_edges(t0, t1, g.ntheta);

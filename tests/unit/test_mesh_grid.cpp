@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "mote/core/deck.hpp"
 #include "mote/mesh/grid.hpp"
 
 using namespace mote;
@@ -69,6 +70,33 @@ TEST(MeshGrid, GhostCellsAndSpacing) {
   // Two blocks: 18 cells below pi/9, twice as fine as the 12 above.
   const auto b = mesh::block_edges(0.0, M_PI / 9, M_PI / 4, 30, 18);
   EXPECT_NEAR((b[1] - b[0]) / (b[29] - b[28]), (M_PI / 9 / 18) / ((M_PI / 4 - M_PI / 9) / 12), 1e-12);
+  // Two logarithmic blocks: 40 cells in (0.1, 0.15), 200 in (0.15, 400) (RBO24 sec. 4.3).
+  const auto l = mesh::log_block_edges(0.1, 0.15, 400.0, 240, 40);
+  ASSERT_EQ(l.size(), 241u);
+  EXPECT_DOUBLE_EQ(l[40], 0.15);
+  EXPECT_NEAR(l[1] / l[0], std::pow(1.5, 1.0 / 40), 1e-13);
+  EXPECT_NEAR(l[240] / l[239], std::pow(400.0 / 0.15, 1.0 / 200), 1e-13);
   const auto p = mesh::power_edges(0.0, 1.0, 4, 2.0);
   EXPECT_DOUBLE_EQ(p[1], 1.0 / 16.0);
+}
+
+TEST(MeshGrid, LogBlocksFromTheDeckAndTheirErrors) {
+  core::DeckSchema schema;
+  mesh::GridSpec::declare(schema);
+  const std::string base =
+      "[grid]\nnr = 240\nR_in = 0.1\nR_out = 400.0\nntheta = 8\ntheta_max = 0.7\nr_spacing = \"log_blocks\"\n";
+  const auto g =
+      mesh::GridSpec::from_deck(core::Deck::parse(base + "R_split = 0.15\nr_block_cells = 40\n", "grid.toml", schema));
+  EXPECT_EQ(g.r_edges, mesh::log_block_edges(0.1, 0.15, 400.0, 240, 40));
+  const auto refused = [&](const std::string& rest, const std::string& key) {
+    try {
+      core::Deck::parse(base + rest, "grid.toml", schema);
+    } catch (const core::DeckError& e) {
+      return std::string(e.what()).find("key '" + key + "'") != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused("R_split = 500.0\nr_block_cells = 40\n", "grid.R_split"));
+  EXPECT_TRUE(refused("R_split = 0.15\nr_block_cells = 240\n", "grid.r_block_cells"));
+  EXPECT_TRUE(refused("R_split = 0.15\n", "grid.r_block_cells"));
 }

@@ -34,7 +34,7 @@ struct GridSpec {
   bool r_log = true;  // ghost edges continue the boundary spacing geometrically (else arithmetically)
   int ghosts = 2;
 
-  /// Deck table [grid]: R_in, R_out, nr, r_spacing ("log" | "linear" | "edges" + r_edges),
+  /// Deck table [grid]: R_in, R_out, nr, r_spacing ("log" | "linear" | "log_blocks" | "edges" + r_edges),
   /// theta_min, theta_max, ntheta, theta_spacing ("linear" | "power" | "blocks" | "edges"), geometry.
   static void declare(core::DeckSchema& schema);
   static GridSpec from_deck(const core::Deck& deck);
@@ -47,6 +47,9 @@ std::vector<double> linear_edges(double lo, double hi, int n);
 std::vector<double> power_edges(double lo, double hi, int n, double p);
 /// Two linear blocks: n_inner cells in [lo, split], the rest in [split, hi].
 std::vector<double> block_edges(double lo, double split, double hi, int n, int n_inner);
+/// Two logarithmic blocks: n_inner cells in [lo, split], the rest in [split, hi]
+/// (the refined inner rim of RBO24 sec. 4.3, after Ramsey & Dullemond 2015).
+std::vector<double> log_block_edges(double lo, double split, double hi, int n, int n_inner);
 
 class Grid {
  public:
