@@ -147,7 +147,10 @@ void DiscSimulation::load_state(const io::H5File& file) {
   if (coag_) coag_->load_state(file);
 }
 
-std::string DiscSimulation::work_summary() const { return driver_->schedule_summary(); }
+std::string DiscSimulation::work_summary() const {
+  const std::string schedule = driver_->schedule_summary();
+  return temperature_ ? schedule + "\n" + temperature_->solve_summary() : schedule;
+}
 
 double DiscSimulation::min_dust_density() const {
   auto Q = dust_->Q;

@@ -162,16 +162,38 @@ void DiscTemperature::solve(double elapsed) {
     last_iterations_ = relaxed.iterations;
     last_residual_ = relaxed.last_residual;
     logging::info("temperature: steady state after ", relaxed.solves, " solves, ", relaxed.iterations,
-                  " BiCGStab iterations, ", relaxed.solve_seconds, " s in the linear solver");
+                  " BiCGStab iterations, ", relaxed.solve_seconds,
+                  " s in the linear solver; relative T change (iterations) per solve: ", relaxed.history());
+    record_.add(relaxed.iterations, relaxed.last_residual, relaxed.solve_seconds, false);
   } else {
     const auto report = fld_.step(elapsed, fields_, state_);
     if (report.attempts.size() > 1)  // the configured preconditioner failed; a fallback rung solved it
       logging::warn("temperature update ", updates_ + 1, ": ", report.summary());
+    double seconds = 0.0;
+    for (const auto& attempt : report.attempts) seconds += attempt.seconds;
     iterations_ += report.total_iterations();
-    for (const auto& attempt : report.attempts) solve_seconds_ += attempt.seconds;
+    solve_seconds_ += seconds;
     last_iterations_ = report.total_iterations();
     last_residual_ = report.last().residual;
+    record_.add(last_iterations_, last_residual_, seconds, report.attempts.size() > 1);
   }
+}
+
+void DiscTemperature::RunRecord::add(double iterations, double residual, double seconds, bool fallback) {
+  fewest_iterations = updates == 0 ? iterations : std::min(fewest_iterations, iterations);
+  most_iterations = std::max(most_iterations, iterations);
+  largest_residual = std::max(largest_residual, residual);
+  solve_seconds += seconds;
+  fallbacks += fallback ? 1 : 0;
+  ++updates;
+}
+
+std::string DiscTemperature::solve_summary() const {
+  return logging::cat("temperature: this run's updates: ", record_.updates, "; BiCGStab iterations per update ",
+                      record_.fewest_iterations, "-", record_.most_iterations,
+                      " (a steady state counts all its solves); largest final residual ", record_.largest_residual,
+                      " (tolerance ", fld_.settings().solver.tolerance, "); fallback rungs needed: ", record_.fallbacks,
+                      "; ", record_.solve_seconds, " s in the linear solver");
 }
 
 void DiscTemperature::update(double elapsed) {
@@ -183,8 +205,10 @@ void DiscTemperature::update(double elapsed) {
   } catch (const std::runtime_error& e) {
     Kokkos::deep_copy(state_.T, T_before_);
     Kokkos::deep_copy(state_.E, E_before_);
+    const char* hint =
+        updates_ == 0 ? " (the first steady state settles to a tenth of temperature.update_tolerance)" : "";
     throw core::NumericalError(
-        logging::cat("temperature update ", updates_ + 1, " failed; T is kept as it was: ", e.what()));
+        logging::cat("temperature update ", updates_ + 1, " failed; T is kept as it was: ", e.what(), hint));
   }
   change_ = radiation::largest_relative_change(grid_, state_.T, T_before_);
   open_luminosity_ = fld_.open_boundary_luminosity(state_);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mote/core/log.hpp"
 #include "mote/radiation/flux_limiter.hpp"
 #include "mote/radiation/planck.hpp"
 
@@ -452,10 +453,20 @@ FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, 
     for (const auto& attempt : report.attempts) done.solve_seconds += attempt.seconds;
     done.last_residual = report.last().residual;
     change = largest_relative_change(grid_, state.T, T_previous_);
+    done.changes.push_back(change);
+    done.solve_iterations.push_back(report.total_iterations());
     if (change <= max_change) return done;
   }
-  throw std::runtime_error("radiation: the steady state did not settle in " + std::to_string(max_solves) +
-                           " solves (last relative temperature change " + std::to_string(change) + ")");
+  throw std::runtime_error("radiation: the steady state did not settle to a relative temperature change of " +
+                           logging::cat(max_change) + " in " + std::to_string(max_solves) +
+                           " solves; change (BiCGStab iterations) per solve: " + done.history());
+}
+
+std::string FldSolver::Relaxation::history() const {
+  std::string out;
+  for (std::size_t k = 0; k < changes.size(); ++k)
+    out += logging::cat(k ? ", " : "", logging::format("%.2e", changes[k]), " (", solve_iterations[k], ")");
+  return out;
 }
 
 namespace {

@@ -16,6 +16,7 @@ Checks:
     history's schedule columns (calls of each sub-solver, temperature updates).
 """
 import os
+import re
 import shutil
 import sys
 import tomllib
@@ -45,6 +46,17 @@ checks.check(np.all(residual <= tolerance) and np.max(its) >= 1,
              f"history: every row's last temperature solve converged, fld_last_residual <= {max(residual):.2e} "
              f"(<= radiation.tolerance {tolerance:g}), {int(min(its))}-{int(max(its))} iterations (0: the start "
              "already within tolerance)")
+summary = re.search(r"temperature: this run's updates: (\d+); BiCGStab iterations per update (\S+)-(\S+) .*"
+                    r"largest final residual (\S+) \(tolerance (\S+)\); fallback rungs needed: (\d+)", p.stdout)
+checks.check(summary is not None, "the log ends with the summary of the run's temperature updates")
+if summary:
+    updates, largest, logged_tolerance = int(summary[1]), float(summary[4]), float(summary[5])
+    # The history samples every output.history_every steps; the log has every update.
+    checks.check(updates >= calls and largest <= tolerance and logged_tolerance == tolerance
+                 and largest >= max(residual) * (1 - 1e-5),
+                 f"log: {updates} updates (history, to step {steps}: {calls}), largest final residual {largest:.3e} <= tolerance "
+                 f"{logged_tolerance:g} and >= the history's largest {max(residual):.3e}; "
+                 f"{summary[2]}-{summary[3]} iterations per update, {summary[6]} fallback rungs")
 
 check_py = os.path.join(os.path.dirname(deck), "check.py")
 c = run([sys.executable, check_py, full], expect=None)

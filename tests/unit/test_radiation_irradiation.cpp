@@ -124,6 +124,22 @@ TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
   EXPECT_LE(std::fabs(balance), 1e-6);
   EXPECT_GE(relaxation.iterations, solves);  // every solve iterated at least once from T = 100 K, E = 0
   EXPECT_LE(worst, 0.01);
+  // The per-solve history the log prints: one change per solve, the last within the target.
+  ASSERT_EQ(relaxation.changes.size(), static_cast<std::size_t>(solves));
+  ASSERT_EQ(relaxation.solve_iterations.size(), static_cast<std::size_t>(solves));
+  EXPECT_LE(relaxation.changes.back(), 1e-6);
+  EXPECT_NE(relaxation.history().find(" (" + std::to_string(relaxation.solve_iterations.front()) + ")"),
+            std::string::npos);
+  // Too few solves allowed: an error with that history, the state left at the last iterate.
+  Kokkos::deep_copy(state.T, 100.0);
+  Kokkos::deep_copy(state.E, 0.0);
+  try {
+    fld.relax_to_steady_state(fields, state, 1e-6, 1);
+    ADD_FAILURE() << "one solve from T = 100 K cannot settle to 1e-6";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("in 1 solves; change (BiCGStab iterations) per solve: "), std::string::npos)
+        << e.what();
+  }
 }
 
 /// Two grey species (kappa_abs 3 and 10, kappa_sca 1 and 0 cm^2/g) at

@@ -80,6 +80,10 @@ class DiscTemperature {
   /// temperature_updates, temperature_change, fld_iterations, fld_solve_s,
   /// absorbed_star and open_luminosity (power per radian of azimuth, at the last call).
   std::vector<io::Diagnostic> diagnostics() const;
+  /// One log line on this process's updates: their count, BiCGStab iterations
+  /// per update (least, most), the largest final residual against the
+  /// tolerance, how many needed a fallback rung, and the solver's wall time.
+  std::string solve_summary() const;
 
  private:
   void prepare_fields();
@@ -107,6 +111,12 @@ class DiscTemperature {
   double iterations_ = 0.0, solve_seconds_ = 0.0, absorbed_ = 0.0, open_luminosity_ = 0.0;
   // The last update's BiCGStab iterations (all solves of the first steady state) and final max fractional residual.
   double last_iterations_ = 0.0, last_residual_ = 0.0;
+  // This process's updates (not checkpointed: the log speaks of its own run).
+  struct RunRecord {
+    long long updates = 0, fallbacks = 0;
+    double fewest_iterations = 0.0, most_iterations = 0.0, largest_residual = 0.0, solve_seconds = 0.0;
+    void add(double iterations, double residual, double seconds, bool fallback);
+  } record_;
 };
 
 }  // namespace mote::disc

@@ -94,6 +94,7 @@ class FldSolver {
   /// Non-zeros of the configured ILU factors (L + U).
   int ilu_nonzeros() const { return solver_->factor_nonzeros(settings_.solver.preconditioning.fill_level); }
   const RadiationConstants& constants() const { return constants_; }
+  const FldSettings& settings() const { return settings_; }
   FldFields make_fields() const;
   FldState make_state() const;
 
@@ -112,7 +113,11 @@ class FldSolver {
     int solves = 0;
     int iterations = 0;  // BiCGStab iterations over all solves and rungs
     double solve_seconds = 0.0;
-    double last_residual = 0.0;  // max fractional residual of the last solve's last rung
+    double last_residual = 0.0;         // max fractional residual of the last solve's last rung
+    std::vector<double> changes;        // largest relative T change of each solve
+    std::vector<int> solve_iterations;  // BiCGStab iterations of each solve
+    /// "change (iterations)" of each solve, for the log.
+    std::string history() const;
   };
   /// Steady state with the lagged limiter and Planck factors iterated to
   /// consistency: steps with dt = infinity until no active cell's T changes by
