@@ -1,9 +1,13 @@
-// ILU(k) on Kokkos Kernels spiluk + sptrsv (see ilu.hpp).
+// ILU(k): Kokkos Kernels spiluk symbolic and sptrsv, a level-scheduled numeric
+// phase of mote's own (see ilu.hpp).
 #include "mote/linalg/ilu.hpp"
 
 #include <KokkosSparse_spiluk.hpp>
 #include <KokkosSparse_sptrsv.hpp>
+#include <algorithm>
 #include <stdexcept>
+
+#include "mote/core/loops.hpp"
 
 namespace mote::linalg {
 
@@ -54,13 +58,114 @@ void IluFactors::symbolic(const CrsPattern& pattern, int estimate) {
                               U_entries_);
   Kokkos::resize(L_entries_, ilu_handle_.get_spiluk_handle()->get_nnzL());
   Kokkos::resize(U_entries_, ilu_handle_.get_spiluk_handle()->get_nnzU());
+  sort_rows_and_find_levels();
   lower_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, true);
   upper_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, false);
   triangular::sptrsv_symbolic(&lower_handle_, L_row_map_, L_entries_);
   triangular::sptrsv_symbolic(&upper_handle_, U_row_map_, U_entries_);
 }
 
+/// Columns ascending in every row of L and U (L's diagonal last, U's first,
+/// checked), and the level of each row: 0 without strictly lower entries,
+/// else one more than the highest level among the rows it depends on.
+void IluFactors::sort_rows_and_find_levels() {
+  const int n = static_cast<int>(L_row_map_.extent(0)) - 1;
+  auto sort = [n](const RowMap& row_map, const Entries& entries, bool diagonal_last) {
+    auto rm = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), row_map);
+    auto e = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), entries);
+    for (int row = 0; row < n; ++row) {
+      std::sort(e.data() + rm(row), e.data() + rm(row + 1));
+      const Offset diagonal = diagonal_last ? rm(row + 1) - 1 : rm(row);
+      if (rm(row + 1) == rm(row) || e(diagonal) != row)
+        throw std::runtime_error("linalg: the ILU pattern of row " + std::to_string(row) + " has no diagonal entry");
+    }
+    Kokkos::deep_copy(entries, e);
+    return std::make_pair(rm, e);
+  };
+  const auto [rm, e] = sort(L_row_map_, L_entries_, true);
+  sort(U_row_map_, U_entries_, false);
+  std::vector<int> level(n, 0), count;
+  for (int row = 0; row < n; ++row) {
+    for (Offset k = rm(row); k + 1 < rm(row + 1); ++k) level[row] = std::max(level[row], level[e(k)] + 1);
+    if (level[row] >= static_cast<int>(count.size())) count.resize(level[row] + 1, 0);
+    ++count[level[row]];
+  }
+  level_ptr_.assign(count.size() + 1, 0);
+  for (std::size_t l = 0; l < count.size(); ++l) level_ptr_[l + 1] = level_ptr_[l] + count[l];
+  level_rows_ = IntView1("linalg::ilu_level_rows", n);
+  auto rows = Kokkos::create_mirror_view(level_rows_);
+  std::vector<int> next(level_ptr_.begin(), level_ptr_.end() - 1);
+  for (int row = 0; row < n; ++row) rows(next[level[row]]++) = row;
+  Kokkos::deep_copy(level_rows_, rows);
+}
+
 namespace {
+
+/// One row of the IKJ elimination (Saad 2003, Algorithm 10.4) on the ILU(k)
+/// pattern, in the order of Kokkos Kernels' spiluk numeric: unpack A's row,
+/// then for each strictly lower entry (i, k), ascending, l_ik = a_ik / u_kk
+/// and a_ij -= l_ik u_kj over the pattern's j. Rows ascending, so the targets
+/// of u_k* are found by merging. A zero pivot becomes 1e6 (as spiluk).
+struct RowElimination {
+  RowMap A_row_map;
+  Entries A_entries;
+  Values A_values;
+  RowMap L_row_map;
+  Entries L_entries;
+  Values L_values;
+  RowMap U_row_map;
+  Entries U_entries;
+  Values U_values;
+  IntView1 rows;
+
+  /// Position of `col` in entries[lo, hi) (ascending), or hi.
+  KOKKOS_INLINE_FUNCTION static Offset find(const Entries& entries, Offset lo, Offset hi, Ordinal col) {
+    Offset a = lo, b = hi;
+    while (a < b) {
+      const Offset mid = a + (b - a) / 2;
+      if (entries(mid) < col)
+        a = mid + 1;
+      else
+        b = mid;
+    }
+    return a < hi && entries(a) == col ? a : hi;
+  }
+
+  KOKKOS_INLINE_FUNCTION void operator()(int r) const {
+    const Ordinal row = rows(r);
+    const Offset l0 = L_row_map(row), l_diag = L_row_map(row + 1) - 1;
+    const Offset u0 = U_row_map(row), u1 = U_row_map(row + 1);
+    for (Offset k = l0; k < l_diag; ++k) L_values(k) = 0.0;
+    L_values(l_diag) = 1.0;
+    for (Offset k = u0; k < u1; ++k) U_values(k) = 0.0;
+    for (Offset k = A_row_map(row); k < A_row_map(row + 1); ++k) {
+      const Ordinal col = A_entries(k);
+      if (col < row)
+        L_values(find(L_entries, l0, l_diag, col)) = A_values(k);
+      else
+        U_values(find(U_entries, u0, u1, col)) = A_values(k);
+    }
+    for (Offset k = l0; k < l_diag; ++k) {
+      const Ordinal prev = L_entries(k);
+      const Offset p0 = U_row_map(prev);
+      const Real factor = L_values(k) / U_values(p0);
+      L_values(k) = factor;
+      Offset l = k + 1, u = u0;
+      for (Offset kk = p0 + 1; kk < U_row_map(prev + 1); ++kk) {
+        const Ordinal col = U_entries(kk);
+        const Real update = -U_values(kk) * factor;
+        if (col < row) {
+          while (l < l_diag && L_entries(l) < col) ++l;
+          if (l < l_diag && L_entries(l) == col) L_values(l) += update;
+        } else {
+          while (u < u1 && U_entries(u) < col) ++u;
+          if (u < u1 && U_entries(u) == col) U_values(u) += update;
+        }
+      }
+    }
+    if (U_values(u0) == 0.0) U_values(u0) = 1e6;
+  }
+};
 
 /// First row whose U diagonal (the first entry of its sorted row) is zero or
 /// not finite; n when none.
@@ -82,9 +187,11 @@ int first_bad_pivot(const RowMap& U_row_map, const Entries& U_entries, const Val
 }  // namespace
 
 int IluFactors::factorise(const CrsMatrix& A) {
-  auto A_values = A.values;
-  triangular::spiluk_numeric(&ilu_handle_, fill_level_, A_row_map_, A_entries_, A_values, L_row_map_, L_entries_,
-                             L_values_, U_row_map_, U_entries_, U_values_);
+  const RowElimination eliminate{A_row_map_, A_entries_, A.values,   L_row_map_, L_entries_,
+                                 L_values_,  U_row_map_, U_entries_, U_values_,  level_rows_};
+  for (std::size_t l = 0; l + 1 < level_ptr_.size(); ++l)
+    Kokkos::parallel_for("linalg::ilu_numeric", Kokkos::RangePolicy<ExecSpace>(level_ptr_[l], level_ptr_[l + 1]),
+                         eliminate);
   const int bad = first_bad_pivot(U_row_map_, U_entries_, U_values_);
   return bad < static_cast<int>(U_row_map_.extent(0)) - 1 ? bad : -1;
 }
