@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Check a disc_passive run (the D5 criteria of VALIDATION on a CI-sized grid).
+"""Check a disc_passive run (the D5 criteria of VALIDATION).
 
-    check.py RUN_DIR [--compare FINE_RUN_DIR] [--plot FILE.png]
+    check.py RUN_DIR [--compare FINE_RUN_DIR] [--pinte M_EARTH] [--plot FILE.png]
 
 From the last snapshot and history.txt:
   * steady-state energy balance: the luminosity leaving through the open
@@ -14,12 +14,23 @@ From the last snapshot and history.txt:
     mid-plane and top-of-grid temperatures T(R) (the two curves of RBO24
     Fig. 9) differ by < 2 % from 2 R_in outwards. The inner rim (R < 2 R_in)
     is the optically thick wall that RBO24 resolve with extra inner cells;
-    it and the whole-domain differences are reported as INFO.
+    it and the whole-domain differences are reported as INFO;
+  * with --pinte M (the pinte_*.toml decks, RBO24 sec. 4.3): the dust mass
+    on the grid (both hemispheres) is M Earth masses to 1 %, and the top row
+    of the grid, optically thin to the star, is at the optically thin
+    temperature of its grain mixture, from the deck's opacity table:
+      sum_s rho_s kP_s(T) T^4 = sum_s rho_s kP_s(T_star) T_star^4 (R_star / 2 r)^2,
+    (kP the Planck mean of the absorption opacity), to THIN_LIMIT from 2 R_in
+    outwards (the re-emitted light of the disc below adds a little).
+    The mid-plane optical depth from the star at 0.81 um is reported (RBO24:
+    87 and 8.7e4 for 1e-2 and 10 M_earth, with Draine's silicate).
 Prints PASS/FAIL/INFO lines and 'N passed, M failed'; exits non-zero on a failure.
 """
 import argparse
 import os
 import sys
+
+import tomllib
 
 import numpy as np
 
@@ -32,6 +43,11 @@ BALANCE = 1e-3      # VALIDATION D5
 SUPERHEATING = 2.0  # hottest cell of a column / mid-plane cell
 CONVERGENCE = 0.02  # VALIDATION D5: < 2 % between the deck's resolution and 1.5x
 RIM = 2.0           # columns from RIM x R_in outwards
+MASS = 1e-2         # dust mass on the grid against the deck's (--pinte)
+THIN_LIMIT = 0.05   # top row against the optically thin temperature (--pinte)
+M_EARTH = 5.9722e27
+R_SUN = 6.957e10
+H_PLANCK, C_LIGHT, K_B = 6.62607015e-27, 2.99792458e10, 1.380649e-16
 
 
 def load(run_dir):
@@ -39,7 +55,7 @@ def load(run_dir):
     R = snap.data["R_centres"] * snap.units["length_cm"] / AU
     theta = snap.data["theta_centres"]
     T = snap.fields["gas_T"].reshape(len(R), len(theta))
-    return R, theta, T
+    return R, theta, T, tomllib.loads(snap.deck)["grid"]["R_in"] * snap.units["length_cm"] / AU
 
 
 def profile_at(R_from, values, R_to):
@@ -48,15 +64,15 @@ def profile_at(R_from, values, R_to):
 
 
 def analyse(run_dir, fine_dir=None):
-    R, theta, T = load(run_dir)
+    R, theta, T, R_in = load(run_dir)
     hist = mote.read_history(os.path.join(run_dir, "history.txt"))
-    out = {"R": R, "theta": theta, "T": T,
+    out = {"R": R, "theta": theta, "T": T, "R_in": R_in,
            "energy_balance": float(hist["open_luminosity"][-1] / hist["absorbed_star"][-1] - 1.0),
            "fld_iterations": int(hist["fld_iterations"][-1])}
     outer = R >= RIM * R[0]
     out["superheating_min"] = float((T.max(axis=1) / T[:, 0])[outer].min())
     if fine_dir:
-        Rf, thetaf, Tf = load(fine_dir)
+        Rf, thetaf, Tf, _ = load(fine_dir)
         # The mid-plane and top rows sit at different theta in the two grids:
         # interpolate the fine run's columns to the coarse cell-centre theta first.
         mid = np.array([np.interp(theta[0], thetaf, Tf[i]) for i in range(len(Rf))])
@@ -70,6 +86,72 @@ def analyse(run_dir, fine_dir=None):
         whole = np.abs(np.array([profile_at(Rf, grid_f[:, j], R) for j in range(len(theta))]).T / T - 1.0)
         out.update({"whole_median": float(np.median(whole)), "whole_max": float(whole.max())})
     return out
+
+
+def read_dsharp_table(path):
+    """sizes [cm], wavelengths [cm], k_abs[a, lambda], k_ext_eff[a, lambda] (scattering times 1 - g)."""
+    with open(path) as f:
+        n_a, n_l = (int(v) for v in f.readline().split())
+    rows = np.loadtxt(path, skiprows=1).reshape(n_a, n_l, -1)
+    g = rows[:, :, 4] if rows.shape[2] > 4 else 0.0
+    return rows[:, 0, 0], rows[0, :, 1] * 1e-4, rows[:, :, 2], rows[:, :, 2] + rows[:, :, 3] * (1.0 - g)
+
+
+def planck_lambda(lam, T):
+    """B_lambda(T) (arbitrary normalisation per T is not allowed: cgs)."""
+    x = np.minimum(H_PLANCK * C_LIGHT / (lam * K_B * T), 700.0)
+    return 2.0 * H_PLANCK * C_LIGHT ** 2 / lam ** 5 / np.expm1(x)
+
+
+def planck_emission(lam_table, k_abs, T):
+    """integral k_abs B_lambda(T) dlambda per species (log-log interpolation on a fine grid)."""
+    lam = np.logspace(np.log10(lam_table[0]), np.log10(lam_table[-1]), 2000)
+    k = np.exp([np.interp(np.log(lam), np.log(lam_table), np.log(ks)) for ks in k_abs])
+    return np.trapz(k * planck_lambda(lam, T), lam, axis=1)
+
+
+def thin_temperature(rho, heating, lam, k_abs):
+    """T with sum_s rho_s int k_s B(T) = heating (bisection in log T)."""
+    lo, hi = np.log(1.0), np.log(1e4)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if np.dot(rho, planck_emission(lam, k_abs, np.exp(mid))) > heating:
+            hi = mid
+        else:
+            lo = mid
+    return np.exp(0.5 * (lo + hi))
+
+
+def pinte_checks(run_dir, out):
+    """Dust mass, the optically thin top row and the mid-plane optical depth (--pinte)."""
+    snap = mote.last_snapshot(run_dir)
+    deck = tomllib.loads(snap.deck)
+    hist = mote.read_history(os.path.join(run_dir, "history.txt"))
+    # The history's dust mass is sum rho V over one hemisphere, V per radian of azimuth.
+    out["dust_mass_earth"] = float(4.0 * np.pi * hist["dust_mass"][0] * snap.units["mass_g"] / M_EARTH)
+    sizes_t, lam, k_abs, k_ext = read_dsharp_table(deck["radiation"]["opacity_file"])
+    pick = [int(np.argmin(np.abs(np.log(sizes_t / a)))) for a in deck["dust"]["sizes"]]
+    k_abs, k_ext = k_abs[pick], k_ext[pick]
+    R, theta, T = out["R"], out["theta"], out["T"]
+    rho_unit = snap.units["mass_g"] / snap.units["length_cm"] ** 3
+    rho = np.array([snap.fields[f"dust_rho_{s}"].reshape(len(R), len(theta)) for s in range(len(pick))]) * rho_unit
+    T_star = deck["radiation"]["star_T_eff"]
+    R_star = deck["radiation"]["star_radius"] * R_SUN
+    star = planck_emission(lam, k_abs, T_star)
+    top = len(theta) - 1
+    r_cm = R * AU / np.cos(theta[top])
+    T_thin = np.array([thin_temperature(rho[:, i, top], np.dot(rho[:, i, top], star) * (R_star / (2 * r_cm[i])) ** 2,
+                                        lam, k_abs) for i in range(len(R))])
+    out["T_thin"] = T_thin
+    ratio = T[:, top] / T_thin - 1.0
+    outer = R >= RIM * R[0]
+    out["thin_worst"] = float(ratio[outer][np.argmax(np.abs(ratio[outer]))])
+    out["thin_median"] = float(np.median(ratio[outer]))
+    k_081 = np.exp([np.interp(np.log(0.81e-4), np.log(lam), np.log(ks)) for ks in k_ext])
+    edges = np.concatenate([[R[0] ** 1.5 / R[1] ** 0.5], np.sqrt(R[1:] * R[:-1]), [R[-1] ** 1.5 / R[-2] ** 0.5]])
+    dtau = k_081 @ rho[:, :, 0] * np.diff(edges) * AU
+    out["tau_081"], out["tau_081_first_cell"] = float(np.sum(dtau)), float(dtau[0])
+    out["T_mid_max"] = float(T[:, 0].max())
 
 
 def plot(out, path):
@@ -100,9 +182,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run_dir")
     parser.add_argument("--compare", help="a run of the same deck at 1.5x the resolution")
+    parser.add_argument("--pinte", type=float, metavar="M_EARTH",
+                        help="a pinte_*.toml run: its total dust mass in Earth masses")
     parser.add_argument("--plot")
     args = parser.parse_args()
     out = analyse(args.run_dir, args.compare)
+    if args.pinte:
+        pinte_checks(args.run_dir, out)
     v = Verdict()
     v.info(f"BiCGStab iterations of the steady state: {out['fld_iterations']}")
     v.check(abs(out["energy_balance"]) <= BALANCE,
@@ -120,6 +206,15 @@ def main():
                 f"< {CONVERGENCE:g}")
         v.info(f"inner rim (R < {RIM:g} R_in): max change {out['rim_change']:.3e}; whole grid: median "
                f"{out['whole_median']:.2e}, max {out['whole_max']:.2e} (at the shadow edge and the rim)")
+    if args.pinte:
+        v.check(abs(out["dust_mass_earth"] / args.pinte - 1.0) <= MASS,
+                f"dust mass on the grid {out['dust_mass_earth']:.4e} M_earth against {args.pinte:g} "
+                f"(|ratio - 1| <= {MASS:g})")
+        v.check(abs(out["thin_worst"]) <= THIN_LIMIT,
+                f"top row against the optically thin temperature, R >= {RIM:g} R_in: largest T / T_thin - 1 = "
+                f"{out['thin_worst']:.3e} (|.| <= {THIN_LIMIT:g}), median {out['thin_median']:.3e}")
+        v.info(f"mid-plane optical depth from the star at 0.81 um: {out['tau_081']:.3g} ({out['tau_081_first_cell']:.3g} "
+               f"in the first cell; the hottest mid-plane cell is at {out['T_mid_max']:.0f} K)")
     if args.plot:
         plot(out, args.plot)
     sys.exit(v.finish())

@@ -5,7 +5,9 @@
 
 Runs `BIN_DIR/<name> DECK --check` in WORKDIR for each problems/<name>/*.toml:
 exit code 0, the resolved deck printed, and nothing written (a check allocates
-and writes nothing). Catches decks left behind by a renamed or removed key.
+and writes nothing). Decks run from the repository root and name their input
+files from there (problems/disc_passive/pinte_opacities.dat): WORKDIR holds a
+link `problems` to PROBLEMS_DIR so that they resolve the same. Catches decks left behind by a renamed or removed key.
 Then shipped decks with overrides that break cross-key rules (R_out < R_in,
 theta inverted, array lengths, a choice the problem needs): --check must exit 2
 and report every broken rule with the file and line (or override) of its key.
@@ -22,6 +24,7 @@ def main():
     bin_dir, problems, work = sys.argv[1:4]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    os.symlink(os.path.abspath(problems), os.path.join(work, "problems"))
     checks = Checks()
     decks = sorted(glob.glob(os.path.join(problems, "*", "*.toml")))
     checks.check(len(decks) > 0, f"{len(decks)} decks found under {problems}")
@@ -37,7 +40,7 @@ def main():
                      f"{label}: {name} --check exits {p.returncode}"
                      + ("" if p.returncode == 0 else f" ({p.stderr.strip()[-300:]})"))
     check_rejections(checks, bin_dir, problems, work)
-    checks.check(os.listdir(work) == [], "--check wrote nothing")
+    checks.check(os.listdir(work) == ["problems"], "--check wrote nothing")
     return checks.finish()
 
 

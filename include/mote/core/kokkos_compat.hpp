@@ -20,6 +20,7 @@ using MOTE_KOKKOS_MATH_NS::cbrt;
 using MOTE_KOKKOS_MATH_NS::ceil;
 using MOTE_KOKKOS_MATH_NS::cos;
 using MOTE_KOKKOS_MATH_NS::erf;
+using MOTE_KOKKOS_MATH_NS::erfc;
 using MOTE_KOKKOS_MATH_NS::exp;
 using MOTE_KOKKOS_MATH_NS::expm1;
 using MOTE_KOKKOS_MATH_NS::fabs;

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""The Pinte et al. (2009) benchmark of RBO24 sec. 4.3 (VALIDATION D5) through
+problems/disc_passive/check.py.
+
+usage: pinte_check.py EXE WORKDIR ci|full
+
+ci:   pinte_low.toml on a 60 x 40 grid (10 inner cells) with its 20 bands:
+      energy balance, dust mass, the optically thin top row; pinte_high.toml's
+      dust mass at set-up (t_end = 0).
+full: both decks at their resolution and at 1.5x it (RBO24's grids): every
+      check of check.py with --compare, and the figure in the style of RBO24
+      Fig. 9 (WORKDIR/pinte.png).
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+from harness import Checks, run
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PROBLEM = os.path.join(HERE, "..", "..", "problems", "disc_passive")
+sys.path.insert(0, PROBLEM)
+import check as passive  # noqa: E402
+
+exe, work, mode = sys.argv[1], sys.argv[2], sys.argv[3]
+checks = Checks()
+MASSES = {"low": 1e-2, "high": 10.0}
+FINE = {"low": ["grid.nr=360", "grid.r_block_cells=60", "grid.ntheta=225"],
+        "high": ["grid.nr=444", "grid.r_block_cells=144", "grid.ntheta=225"]}
+
+
+def fresh(name):
+    path = os.path.join(work, name)
+    shutil.rmtree(path, ignore_errors=True)
+    return path
+
+
+def deck(name):
+    """The deck and its opacity table, wherever ctest runs."""
+    return [os.path.join(PROBLEM, f"pinte_{name}.toml"),
+            "radiation.opacity_file=" + os.path.join(PROBLEM, "pinte_opacities.dat")]
+
+
+def check_run(name, run_dir, fine_dir=None):
+    out = passive.analyse(run_dir, fine_dir)
+    passive.pinte_checks(run_dir, out)
+    mass = MASSES[name]
+    checks.check(abs(out["energy_balance"]) <= passive.BALANCE,
+                 f"{name}: energy balance {out['energy_balance']:.3e} (|.| <= {passive.BALANCE:g})")
+    checks.check(abs(out["dust_mass_earth"] / mass - 1.0) <= passive.MASS,
+                 f"{name}: dust mass {out['dust_mass_earth']:.4e} M_earth against {mass:g} (|ratio - 1| <= {passive.MASS:g})")
+    checks.check(abs(out["thin_worst"]) <= passive.THIN_LIMIT,
+                 f"{name}: top row T / T_thin - 1 = {out['thin_worst']:.3e} at worst, median {out['thin_median']:.3e} "
+                 f"(|.| <= {passive.THIN_LIMIT:g})")
+    print(f"INFO {name}: mid-plane optical depth at 0.81 um {out['tau_081']:.3g}, "
+          f"{out['fld_iterations']} BiCGStab iterations")
+    if fine_dir:
+        checks.check(out["mid_change"] < passive.CONVERGENCE and out["top_change"] < passive.CONVERGENCE,
+                     f"{name}: 1.5x resolution, R >= {passive.RIM:g} R_in: mid-plane {out['mid_change']:.3e}, top "
+                     f"{out['top_change']:.3e} (< {passive.CONVERGENCE:g}); inner rim {out['rim_change']:.3e}")
+
+
+if mode == "ci":
+    coarse = fresh("low_coarse")
+    run([exe, *deck("low"), f"output.dir={coarse}", "grid.nr=60", "grid.r_block_cells=10", "grid.ntheta=40"])
+    check_run("low", coarse)
+    high = fresh("high_setup")
+    run([exe, *deck("high"), f"output.dir={high}", "run.t_end=0"])
+    hist = passive.mote.read_history(os.path.join(high, "history.txt"))
+    snap = passive.mote.last_snapshot(high)
+    mass = 4.0 * 3.141592653589793 * hist["dust_mass"][0] * snap.units["mass_g"] / passive.M_EARTH
+    checks.check(abs(mass / MASSES["high"] - 1.0) <= passive.MASS,
+                 f"high: dust mass at set-up {mass:.4e} M_earth against 10 (|ratio - 1| <= {passive.MASS:g})")
+else:
+    runs = {}
+    for name in ("low", "high"):
+        base, fine = fresh(name), fresh(f"{name}_fine")
+        run([exe, *deck(name), f"output.dir={base}"])
+        run([exe, *deck(name), f"output.dir={fine}"] + FINE[name])
+        check_run(name, base, fine)
+        runs[name] = (base, fine)
+    subprocess.run([sys.executable, os.path.join(PROBLEM, "plot_pinte.py"), runs["low"][0], runs["high"][0], "--fine",
+                    runs["low"][1], runs["high"][1], "--out", os.path.join(work, "pinte.png")], check=True)
+sys.exit(checks.finish())
