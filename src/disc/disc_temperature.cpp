@@ -26,6 +26,12 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
       .greater_than(0.0)
       .less_than(1.0)
       .doc("Predicted largest fractional temperature change that makes the next update due (RBO24: 0.1 %).");
+  s.integer("temperature.steady_solves")
+      .default_value(30LL)
+      .min(1)
+      .doc(
+          "Most lagged dt = infinity solves the first update's steady state may take before the run stops with "
+          "its history (each settles the lagged limiter and Planck factors further).");
   s.real("temperature.max_growth")
       .default_value(10.0)
       .greater_than(1.0)
@@ -44,6 +50,7 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
 TemperatureSettings TemperatureSettings::from_deck(const core::Deck& d) {
   TemperatureSettings t;
   t.update_tolerance = d.real("temperature.update_tolerance");
+  t.steady_solves = static_cast<int>(d.integer("temperature.steady_solves"));
   t.max_growth = d.real("temperature.max_growth");
   t.gamma = d.real("temperature.gamma");
   t.viscous_heating = d.boolean("temperature.viscous_heating");
@@ -156,7 +163,8 @@ void DiscTemperature::prepare_fields() {
 void DiscTemperature::solve(double elapsed) {
   if (updates_ == 0) {
     // Consistent to a tenth of the update tolerance: a smaller change would not make an update due.
-    const auto relaxed = fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance);
+    const auto relaxed =
+        fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance, settings_.steady_solves);
     iterations_ += relaxed.iterations;
     solve_seconds_ += relaxed.solve_seconds;
     last_iterations_ = relaxed.iterations;
@@ -205,8 +213,10 @@ void DiscTemperature::update(double elapsed) {
   } catch (const std::runtime_error& e) {
     Kokkos::deep_copy(state_.T, T_before_);
     Kokkos::deep_copy(state_.E, E_before_);
-    const char* hint =
-        updates_ == 0 ? " (the first steady state settles to a tenth of temperature.update_tolerance)" : "";
+    const char* hint = updates_ == 0
+                           ? " (the first steady state settles to a tenth of temperature.update_tolerance, in at most "
+                             "temperature.steady_solves solves)"
+                           : "";
     throw core::NumericalError(
         logging::cat("temperature update ", updates_ + 1, " failed; T is kept as it was: ", e.what(), hint));
   }

@@ -183,9 +183,7 @@ TEST(DiscTemperature, FailedUpdatesKeepTheTemperature) {
       if (ha.data()[k] != hb.data()[k]) return false;
     return true;
   };
-  // Every rung fails on the first solve. (A relaxation that solves and then
-  // fails to settle, which exercises the roll-back of T and E, has no test yet:
-  // the thin and thick decks tried here settle even at update_tolerance 1e-9.)
+  // Every rung fails on the first solve.
   {
     DiscRun run({"radiation.max_iterations=1", "radiation.ilu_fill=-1", "radiation.max_fill_level=0"});
     RealView2 before("T_before", run.sim.grid().nr_total(), run.sim.grid().nt_total());
@@ -194,6 +192,27 @@ TEST(DiscTemperature, FailedUpdatesKeepTheTemperature) {
     EXPECT_EQ(run.sim.temperature()->updates(), 0);
     EXPECT_TRUE(same(run.sim.gas().fields().T, before));
     EXPECT_TRUE(same(run.sim.temperature()->state().T, before));
+  }
+  // The first solve succeeds and moves T and E, and the steady state is cut
+  // off after it (temperature.steady_solves): both are rolled back, and the
+  // error names the key.
+  {
+    DiscRun run({"temperature.steady_solves=1"});
+    const auto& state = run.sim.temperature()->state();
+    RealView2 T_before("T_before", state.T.extent(0), state.T.extent(1));
+    RealView3 E_before("E_before", state.E.extent(0), state.E.extent(1), state.E.extent(2));
+    Kokkos::deep_copy(T_before, state.T);
+    Kokkos::deep_copy(E_before, state.E);
+    try {
+      run.steps(1);
+      ADD_FAILURE() << "one lagged solve settled the steady state";
+    } catch (const core::NumericalError& e) {
+      EXPECT_NE(std::string(e.what()).find("in 1 solves"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("temperature.steady_solves"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(run.sim.temperature()->updates(), 0);
+    EXPECT_TRUE(same(state.T, T_before));
+    EXPECT_TRUE(same(state.E, E_before));
   }
 }
 
@@ -233,6 +252,7 @@ TEST(DiscTemperature, DeckErrors) {
                core::DeckError);
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.update_tolerance=0"}), core::DeckError);
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.gamma=1.0"}), core::DeckError);
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_solves=0"}), core::DeckError);
 }
 
 }  // namespace
