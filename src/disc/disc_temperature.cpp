@@ -145,11 +145,15 @@ DiscTemperature::DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynam
   fld_.equilibrate_radiation(state_);
 }
 
+void DiscTemperature::refresh_band_means(const RealView2& T) {
+  radiation::fill_fld_opacities_at(opacities_, rho_dust_, gas_.fields().rho, kappa_gas_, T, grid_, fields_);
+}
+
 void DiscTemperature::prepare_fields() {
   const GasFields& gas = gas_.fields();
   copy_dust_densities(dust_.W, rho_dust_);
   if (band_means_at_cell_T_)
-    radiation::fill_fld_opacities_at(opacities_, rho_dust_, gas.rho, kappa_gas_, state_.T, grid_, fields_);
+    refresh_band_means(state_.T);
   else
     radiation::fill_fld_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, fields_);
   radiation::fill_stellar_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, stellar_extinction_,
@@ -163,8 +167,11 @@ void DiscTemperature::prepare_fields() {
 void DiscTemperature::solve(double elapsed) {
   if (updates_ == 0) {
     // Consistent to a tenth of the update tolerance: a smaller change would not make an update due.
+    // Band means at each cell's T follow every iterate, so that the steady state's are its own.
+    radiation::FldSolver::FieldRefresh refresh;
+    if (band_means_at_cell_T_) refresh = [this](const radiation::FldState& next) { refresh_band_means(next.T); };
     const auto relaxed =
-        fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance, settings_.steady_solves);
+        fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance, settings_.steady_solves, refresh);
     iterations_ += relaxed.iterations;
     solve_seconds_ += relaxed.solve_seconds;
     last_iterations_ = relaxed.iterations;

@@ -97,12 +97,10 @@ void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_
       "radiation::fld_opacities_at_T", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
         const Real t = T(math::min(math::max(i, i0), i1), math::min(math::max(j, j0), j1));
         const Real gas = rho_gas(i, j) * kappa_gas;
-        const Real t3 = t * t * t;
-        Real P_a, G_a, P_b, G_b;  // at the short and the long edge of the bin
-        planck_at_edge(edges(0), t, P_a, G_a);
+        PlanckEdge short_edge = planck_edge(edges(0), t);  // of the bin
         for (int b = 0; b < nb; ++b) {
           const int l0 = first(b), l1 = first(b + 1);
-          Real wp = 0, sp = 0, wr = 0, sr = 0, plain_abs = 0, plain_inv = 0;
+          Real wp = 0, sp = 0, wr = 0, sr = 0;  // the weights are > 0 (band_weight_floor)
           for (int l = l0; l < l1; ++l) {
             Real ka = gas, kt = gas;
             for (int s = 0; s < ns; ++s) {
@@ -110,20 +108,17 @@ void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_
               kt += rho_dust(i, j, s) * k_ext(s, l);
             }
             kt = math::max(kt, Real(1e-300));
-            planck_at_edge(edges(l + 1), t, P_b, G_b);
-            const Real p = P_a - P_b, r = t3 * (G_a - G_b);
-            P_a = P_b;
-            G_a = G_b;
+            const PlanckEdge long_edge = planck_edge(edges(l + 1), t);
+            Real p, r;
+            band_mean_weights(short_edge, long_edge, t, p, r);
+            short_edge = long_edge;
             wp += p;
             sp += p * ka;
             wr += r;
             sr += r / kt;
-            plain_abs += ka;
-            plain_inv += 1 / kt;
           }
-          const Real n = l1 - l0;
-          absorption(i, j, b) = wp > 0 ? sp / wp : plain_abs / n;
-          extinction(i, j, b) = wr > 0 ? wr / sr : n / plain_inv;
+          absorption(i, j, b) = sp / wp;
+          extinction(i, j, b) = wr / sr;
         }
       });
 }

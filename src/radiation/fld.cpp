@@ -442,10 +442,11 @@ RealView2 total_energy_density(const RealView3& E) {
 }
 
 FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, FldState& state, double max_change,
-                                                       int max_solves) {
+                                                       int max_solves, const FieldRefresh& refresh) {
   double change = 0.0;
   Relaxation done;
   while (done.solves < max_solves) {
+    if (done.solves > 0 && refresh) refresh(state);
     Kokkos::deep_copy(T_previous_, state.T);
     const auto report = step(std::numeric_limits<double>::infinity(), fields, state);
     ++done.solves;

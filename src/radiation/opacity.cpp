@@ -277,29 +277,23 @@ BandMeans band_means(const OpacityTable& fine, const std::vector<double>& fine_e
     throw std::invalid_argument("radiation: the fine bins need one more edge than the table has wavelengths");
   if (!(T > 0.0)) throw std::invalid_argument("radiation: band means need T > 0");
   const std::vector<int> band = fine_bin_bands(fine_edges_cm, band_edges_cm);
-  std::vector<int> members(nb, 0);
-  for (const int b : band) ++members[b];
   BandMeans m;
   m.planck_absorption.assign(fine.sizes() * nb, 0.0);
   m.rosseland_total.assign(fine.sizes() * nb, 0.0);
   for (int a = 0; a < fine.sizes(); ++a) {
-    std::vector<double> wp(nb, 0.0), sp(nb, 0.0), wr(nb, 0.0), sr(nb, 0.0), plain_abs(nb, 0.0), plain_inv(nb, 0.0);
+    std::vector<double> wp(nb, 0.0), sp(nb, 0.0), wr(nb, 0.0), sr(nb, 0.0);  // weights > 0 (band_weight_floor)
     for (int l = 0; l < nl; ++l) {
-      const double p = band_fraction(fine_edges_cm[l], fine_edges_cm[l + 1], T);
-      const double r = rosseland_band_weight(fine_edges_cm[l], fine_edges_cm[l + 1], T);
+      double p, r;
+      band_mean_weights(planck_edge(fine_edges_cm[l], T), planck_edge(fine_edges_cm[l + 1], T), T, p, r);
       const double total = fine.k_abs(a, l) + fine.k_sca(a, l);
       wp[band[l]] += p;
       sp[band[l]] += p * fine.k_abs(a, l);
       wr[band[l]] += r;
       sr[band[l]] += r / std::max(total, 1e-300);
-      plain_abs[band[l]] += fine.k_abs(a, l) / members[band[l]];
-      plain_inv[band[l]] += 1.0 / (std::max(total, 1e-300) * members[band[l]]);
     }
     for (int b = 0; b < nb; ++b) {
-      // A band far in the Wien tail has no weight at T (it underflows): the
-      // plain means over its fine bins instead.
-      m.planck_absorption[a * nb + b] = wp[b] > 0.0 ? sp[b] / wp[b] : plain_abs[b];
-      m.rosseland_total[a * nb + b] = wr[b] > 0.0 ? wr[b] / sr[b] : 1.0 / plain_inv[b];
+      m.planck_absorption[a * nb + b] = sp[b] / wp[b];
+      m.rosseland_total[a * nb + b] = wr[b] / sr[b];
     }
   }
   return m;

@@ -88,6 +88,7 @@ class DiscTemperature {
 
  private:
   void prepare_fields();
+  void refresh_band_means(const RealView2& T);  // FLD band opacities at each cell's T
   void solve(double elapsed);
   void hand_to_gas();
 

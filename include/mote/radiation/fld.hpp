@@ -29,6 +29,7 @@
 // the last to infinity, so that sum_b f^b = 1.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -119,12 +120,15 @@ class FldSolver {
     /// "change (iterations)" of each solve, for the log.
     std::string history() const;
   };
-  /// Steady state with the lagged limiter and Planck factors iterated to
-  /// consistency: steps with dt = infinity until no active cell's T changes by
-  /// more than `max_change` (relative). Throws std::runtime_error after
-  /// `max_solves` (state holds the last iterate).
+  /// Called before each solve after the first with the state it starts
+  /// from, for fields that depend on T (band means at each cell's T).
+  using FieldRefresh = std::function<void(const FldState& state)>;
+  /// Steady state with the lagged limiter and Planck factors (and the fields
+  /// that `refresh` renews) iterated to consistency: steps with dt = infinity
+  /// until no active cell's T changes by more than `max_change` (relative).
+  /// Throws std::runtime_error after `max_solves` (state holds the last iterate).
   Relaxation relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6,
-                                   int max_solves = 30);
+                                   int max_solves = 30, const FieldRefresh& refresh = {});
 
   /// Radiative power leaving through the open sides (per radian of azimuth,
   /// summed over bands): the face fluxes of E^b with the diffusion
