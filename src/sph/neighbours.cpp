@@ -333,7 +333,9 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
               nb(pos) = sneigh(slack(a) + k);
               im(pos) = simage(slack(a) + k);
             }
-            for (int e = slack(a + 1) - nreverse(a); e < slack(a + 1); ++e, ++pos) {
+            // In arrival order (the k-th went to slack(a + 1) - 1 - k): in Serial that is
+            // already the sorted order, which the insertion sort below then only checks.
+            for (int e = slack(a + 1) - 1; e >= slack(a + 1) - nreverse(a); --e, ++pos) {
               nb(pos) = sneigh(e);
               im(pos) = simage(e);
             }

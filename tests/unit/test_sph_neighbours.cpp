@@ -2,8 +2,10 @@
 // (|r_ab| < R max(h_a, h_b)) found through the cell-binned symmetric list are
 // identical to a brute-force search over all particles and periodic images on
 // random particles with a 100x spread of h, in 1, 2 and 3D, periodic (supports
-// up to ~1.5 box lengths: pairs and self-pairs through several images) and free;
-// the rebuild criterion detects motion.
+// up to ~1.5 box lengths: pairs and self-pairs through several images) and free,
+// and on a 2D column periodic across a narrow width and free in height, where h
+// grows away from the mid-plane to supports near the width; the rebuild
+// criterion detects motion.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -150,6 +152,27 @@ TEST(SphNeighbours, MixedBoundaries) {
   Cloud c = random_cloud(3, 1500, true, 0.003, 100.0, 7);
   c.box.periodic[2] = false;
   compare_with_brute_force(c, KernelType::M4);
+}
+
+TEST(SphNeighbours, NarrowPeriodicColumn) {
+  // A 2D column as perf/bench_sph's: periodic across a width of 0.5, free in
+  // height, h growing 10x away from the mid-plane to supports near the width.
+  Cloud c = random_cloud(2, 1500, true, 0.0156, 1.0, 15);
+  c.box.hi[0] = 0.5;
+  c.box.lo[1] = -0.75;
+  c.box.hi[1] = 0.75;
+  c.box.periodic[1] = false;
+  auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.p.x);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.p.h);
+  for (int i = 0; i < c.p.n; ++i) {
+    x(i, 0) *= 0.5;
+    x(i, 1) = 1.5 * x(i, 1) - 0.75;
+    h(i) = 0.0156 * std::exp(x(i, 1) * x(i, 1) / (2.0 * 0.25 * 0.25) / 2.0);
+  }
+  Kokkos::deep_copy(c.p.x, x);
+  Kokkos::deep_copy(c.p.h, h);
+  compare_with_brute_force(c, KernelType::M6);
+  compare_with_brute_force(c, KernelType::M6, true, 1.0);
 }
 
 TEST(SphNeighbours, RebuildSinglePassAndOverflow) {
