@@ -90,6 +90,7 @@ class TwoFluidDust : public SphModule {
   RealView1 du;                                        ///< drag heating of the gas
   RealView2 drag_pack;                                 ///< per-particle factors of the pair terms (n x 6)
   RealView1 kdrag, size, tstop;                        ///< per species
+  RealView1 species_decay;                             ///< 1 - exp(-dt / t_s) per species (constant t_s)
   Kokkos::View<Real, MemSpace> heat_step, heat_total;  ///< drag heating of the last update and since the start
 
  private:
