@@ -177,6 +177,112 @@ KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
   for (int d = 0; d < Dim; ++d) out[4 * d] = 1.0 / scale;  // LAB15's isotropic nu / N_i
 }
 
+/// Columns of TwoFluidDust::pair_terms: a pair's terms as DragPair::terms gives them.
+enum PairSlot : int { kPairW = 0, kPairSr = 1, kPairVe = 2, kPairE = 3, kPairSlots = 6 };
+
+/// kept, or new storage with 1/16 slack where kept holds fewer than n entries.
+template <class V>
+V fitted(V& kept, std::size_t n, const std::string& label) {
+  if (kept.extent(0) < n) {
+    kept = V();
+    kept = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), n + n / 16);
+  }
+  return kept;
+}
+
+/// CSR offsets of the entries of each list whose particle is of the other
+/// phase: dust lists count their gas entries, gas lists their dust entries
+/// (by the list's symmetry the two totals agree). Returns the dust total.
+int pair_offsets(const NeighbourList& nl, const IntView1& type, bool dust_side, const View<int*>& start) {
+  const auto offsets = nl.offsets;
+  const auto neigh = nl.neigh;
+  const int n = nl.size();
+  Kokkos::parallel_scan(
+      "sph::two_fluid_pair_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1),
+      KOKKOS_LAMBDA(int a, int& acc, bool final) {
+        if (final) start(a) = acc;
+        if (a == n || (type(a) != kGas) != dust_side) return;
+        for (int j = offsets(a); j < offsets(a + 1); ++j) acc += (type(neigh(j)) != kGas) != dust_side ? 1 : 0;
+      });
+  if (!dust_side) return 0;
+  int total = 0;
+  Kokkos::deep_copy(total, Kokkos::subview(start, n));
+  return total;
+}
+
+/// Numbers the dust-gas pairs of the current neighbour list (see
+/// TwoFluidDust::pair_start): slots in dust order, then each gas particle's
+/// slots in the order of its own list, matched through the mirrored image
+/// code (a transpose by counting sort, then a binary search per entry).
+void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList& nl) {
+  const int n = p.n;
+  const auto type = p.type;
+  const auto offsets = nl.offsets;
+  const auto neigh = nl.neigh;
+  const auto image = nl.image;
+  const auto pair_start = fitted(dust.pair_start, n + 1, "sph::two_fluid_pair_start");
+  const auto gas_start = fitted(dust.gas_start, n + 1, "sph::two_fluid_gas_start");
+  const int slots = pair_offsets(nl, type, true, pair_start);
+  pair_offsets(nl, type, false, gas_start);
+  const auto pair_dust = fitted(dust.pair_dust, slots, "sph::two_fluid_pair_dust");
+  const auto pair_code = fitted(dust.pair_code, slots, "sph::two_fluid_pair_code");
+  const auto by_dust = fitted(dust.gas_sorted, slots, "sph::two_fluid_gas_sorted");
+  const auto gas_pairs = fitted(dust.gas_pairs, slots, "sph::two_fluid_gas_pairs");
+  const auto fill = fitted(dust.gas_fill, n, "sph::two_fluid_gas_fill");
+  if (dust.pair_terms.extent(0) < static_cast<std::size_t>(slots)) {
+    dust.pair_terms = RealView2();
+    dust.pair_terms = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::two_fluid_pair_terms"),
+                                slots + slots / 16, static_cast<int>(kPairSlots));
+  }
+  par_for(
+      "sph::two_fluid_gas_fill_zero", 0, n, KOKKOS_LAMBDA(int a) { fill(a) = 0; });
+  // Slots of each dust particle in its list's order; each also goes to its gas particle.
+  par_for(
+      "sph::two_fluid_pair_slots", 0, n, KOKKOS_LAMBDA(int i) {
+        if (type(i) == kGas) return;
+        int s = pair_start(i);
+        for (int j = offsets(i); j < offsets(i + 1); ++j) {
+          const int k = neigh(j);
+          if (type(k) != kGas) continue;
+          pair_dust(s) = i;
+          pair_code(s) = image(j);
+          by_dust(gas_start(k) + Kokkos::atomic_fetch_add(&fill(k), 1)) = s;
+          ++s;
+        }
+      });
+  // Each gas particle's slots sorted (slot order is dust order), then in the order of its list.
+  par_for(
+      "sph::two_fluid_gas_pairs", 0, n, KOKKOS_LAMBDA(int k) {
+        if (type(k) != kGas) return;
+        const int b = gas_start(k), e = gas_start(k + 1);
+        for (int q = b + 1; q < e; ++q) {
+          const int key = by_dust(q);
+          int t = q - 1;
+          while (t >= b && by_dust(t) > key) {
+            by_dust(t + 1) = by_dust(t);
+            --t;
+          }
+          by_dust(t + 1) = key;
+        }
+        int out = b;
+        for (int j = offsets(k); j < offsets(k + 1); ++j) {
+          const int i = neigh(j);
+          if (type(i) == kGas) continue;
+          const unsigned char code = static_cast<unsigned char>(mirror_image(image(j)));
+          int lo = b, hi = e;  // the first slot of dust particle i
+          while (lo < hi) {
+            const int mid = (lo + hi) / 2;
+            if (pair_dust(by_dust(mid)) < i)
+              lo = mid + 1;
+            else
+              hi = mid;
+          }
+          while (lo < e - 1 && pair_code(by_dust(lo)) != code) ++lo;
+          gas_pairs(out++) = by_dust(lo);
+        }
+      });
+}
+
 template <int Dim, class K, class Law>
 void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real lambda_on) {
   const Particles& p = sys.particles();
@@ -195,6 +301,15 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
   const Box box = sys.box();
   pack_drag_factors<Dim, K>(p, dust.v_start, pk, dt);
   law.prepare(dt);
+  if (dust.pair_map_builds != nl.builds()) {
+    update_pair_map(dust, p, nl);
+    dust.pair_map_builds = nl.builds();
+  }
+  const auto pair_start = dust.pair_start;
+  const auto pair_dust = dust.pair_dust;
+  const auto gas_start = dust.gas_start;
+  const auto gas_pairs = dust.gas_pairs;
+  const auto terms = dust.pair_terms;
 
   // Pass 1: T_i = sum_k^gas (m_k / rho_k) W(r_ik, h_k) r^ r^T and its inverse
   // (for isotropic neighbours T_i = (N_i / nu) I, eq. 30).
@@ -223,34 +338,46 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
       });
 
   const DragPair<Dim, K, Law> pair{p.x, p.v, pk, p.rho, p.cs, tinv, p.type, box, law, dt, lambda_on};
-  // Pass 2: the dust, eq. 27.
+  // Pass 2: the dust, eq. 27; every pair's terms go to its slot (w < 0: no drag).
   par_for(
       "sph::two_fluid_drag_dust", 0, n, KOKKOS_LAMBDA(int i) {
         Real acc[3] = {0.0, 0.0, 0.0};
         if (type(i) != kGas) {
+          int s = pair_start(i);
           for (int j = offsets(i); j < offsets(i + 1); ++j) {
             const int k = neigh(j);
+            if (type(k) != kGas) continue;
             Real w, sr, e[3], ve;
-            if (type(k) != kGas || !pair.terms(i, k, image(j), w, sr, e, ve)) continue;
-            for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
+            const bool drag = pair.terms(i, k, image(j), w, sr, e, ve);
+            terms(s, kPairW) = drag ? w : -1.0;
+            if (drag) {
+              terms(s, kPairSr) = sr;
+              terms(s, kPairVe) = ve;
+              for (int d = 0; d < Dim; ++d) terms(s, kPairE + d) = e[d];
+              for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
+            }
+            ++s;
           }
         }
         for (int d = 0; d < Dim; ++d) dv(i, d) = acc[d];
         du(i) = 0.0;
       });
-  // Pass 3: the gas, eq. 28, and its heating (eq. 29 made exact, see above).
+  // Pass 3: the gas, eq. 28, and its heating (eq. 29 made exact, see above),
+  // from the slots of pass 2 in the order of the gas particle's list.
   par_for(
       "sph::two_fluid_drag_gas", 0, n, KOKKOS_LAMBDA(int k) {
         if (type(k) != kGas) return;
         Real acc[3] = {0.0, 0.0, 0.0};
         Real work = 0.0;  // sum_i m_i w_ik (S_ik . r^) (v~_ik + Dv_i / 2) . e_ik
         const Real mk_inv = 1.0 / m(k);
-        for (int j = offsets(k); j < offsets(k + 1); ++j) {
-          const int i = neigh(j);
-          if (type(i) == kGas) continue;
-          // The pair seen from i: the image code of k in i's list is the opposite shift.
-          Real w, sr, e[3], ve;
-          if (!pair.terms(i, k, mirror_image(image(j)), w, sr, e, ve)) continue;
+        for (int q = gas_start(k); q < gas_start(k + 1); ++q) {
+          const int s = gas_pairs(q);
+          const Real w = terms(s, kPairW);
+          if (w < 0.0) continue;
+          const int i = pair_dust(s);
+          const Real sr = terms(s, kPairSr), ve = terms(s, kPairVe);
+          Real e[3] = {0.0, 0.0, 0.0};
+          for (int d = 0; d < Dim; ++d) e[d] = terms(s, kPairE + d);
           const Real mw = m(i) * w;
           Real dvi_e = 0.0;
           for (int d = 0; d < Dim; ++d) {

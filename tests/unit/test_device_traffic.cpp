@@ -235,7 +235,8 @@ TEST(DeviceTraffic, TwoFluidSphStepsCopyAndAllocateNothing) {
   ASSERT_GT(rebuilds, 0) << "the steps must include neighbour rebuilds";
   EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
   EXPECT_EQ(counter.allocations(), 0) << counter.report();
-  EXPECT_LE(counter.scalar_reads(), 3 * rebuilds) << counter.report();
+  // The list build's 3, and the two-fluid pair numbering's count of dust-gas pairs.
+  EXPECT_LE(counter.scalar_reads(), 4 * rebuilds) << counter.report();
 }
 
 TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {

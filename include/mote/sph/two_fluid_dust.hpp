@@ -92,6 +92,18 @@ class TwoFluidDust : public SphModule {
   RealView1 kdrag, size, tstop;                        ///< per species
   RealView1 species_decay;                             ///< 1 - exp(-dt / t_s) per species (constant t_s)
   Kokkos::View<Real, MemSpace> heat_step, heat_total;  ///< drag heating of the last update and since the start
+  /// The dust-gas pairs of the neighbour list, numbered again after each of its
+  /// builds: dust particle i's gas neighbours, in its list's order, hold the
+  /// slots pair_start(i) ..; gas particle k's slots, in the order of its own
+  /// list, are gas_pairs(gas_start(k) ..). Each drag update evaluates a pair
+  /// once, from the dust, into pair_terms (slots x 6: w, S.r^, v~.e, e), and
+  /// the gas sums read it back in the same order as before: the same bits as
+  /// evaluating every pair from both sides, at half the pair evaluations.
+  View<int*> pair_start, gas_start, gas_pairs, pair_dust;
+  View<int*> gas_sorted, gas_fill;  ///< work of the numbering
+  View<unsigned char*> pair_code;   ///< image code of each slot's gas particle in the dust particle's list
+  RealView2 pair_terms;
+  int pair_map_builds = -1;  ///< NeighbourList::builds() the numbering belongs to
 
  private:
   DustSettings s_;
