@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mote/core/device_sort.hpp"
 #include "mote/core/loops.hpp"
 
 namespace mote::sph {
@@ -61,18 +62,8 @@ void sort_by_cell(const IntView1& keys, int n, int ncell, const View<int*>& fill
       });
   // Parallel fills arrive in any order: insertion sort of each cell (a few particles).
   par_for(
-      "sph::neighbour_cell_sort", 0, ncell, KOKKOS_LAMBDA(int c) {
-        const int b = cell_start(c), e = cell_start(c + 1);
-        for (int s = b + 1; s < e; ++s) {
-          const int key = cell_particles(s);
-          int t = s - 1;
-          while (t >= b && cell_particles(t) > key) {
-            cell_particles(t + 1) = cell_particles(t);
-            --t;
-          }
-          cell_particles(t + 1) = key;
-        }
-      });
+      "sph::neighbour_cell_sort", 0, ncell,
+      KOKKOS_LAMBDA(int c) { insertion_sort(cell_particles, cell_start(c), cell_start(c + 1)); });
 }
 
 KOKKOS_INLINE_FUNCTION int ifloor(Real v) {

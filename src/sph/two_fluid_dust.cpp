@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mote/core/device_sort.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/io/h5_file.hpp"
 #include "mote/io/phantom_dump.hpp"
@@ -255,15 +256,7 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
       "sph::two_fluid_gas_pairs", 0, n, KOKKOS_LAMBDA(int k) {
         if (type(k) != kGas) return;
         const int b = gas_start(k), e = gas_start(k + 1);
-        for (int q = b + 1; q < e; ++q) {
-          const int key = by_dust(q);
-          int t = q - 1;
-          while (t >= b && by_dust(t) > key) {
-            by_dust(t + 1) = by_dust(t);
-            --t;
-          }
-          by_dust(t + 1) = key;
-        }
+        insertion_sort(by_dust, b, e);
         int out = b;
         for (int j = offsets(k); j < offsets(k + 1); ++j) {
           const int i = neigh(j);
