@@ -25,8 +25,8 @@ ExternalForce dust_acceleration(Real a) {
 }
 
 std::unique_ptr<SphSystem> make_dustybox(const DustyBox& b, SphConfig cfg, const DustSettings& dust) {
-  if (dust.method != DustMethod::TwoFluid || dust.nspecies != 1)
-    throw std::invalid_argument("dustybox: needs dust.method = \"two-fluid\" with one species");
+  if (dust.method != DustMethod::TwoFluid || dust.nspecies < 1)
+    throw std::invalid_argument("dustybox: needs dust.method = \"two-fluid\" with at least one species");
   if (b.n < 4 || !(b.eps > 0.0) || !(b.hi > b.lo))
     throw std::invalid_argument("dustybox: needs n >= 4, eps > 0 and hi > lo");
   cfg.dim = b.dim;
@@ -43,18 +43,20 @@ std::unique_ptr<SphSystem> make_dustybox(const DustyBox& b, SphConfig cfg, const
   const Real volume = std::pow(b.hi - b.lo, b.dim);
   const Real m_gas = volume * b.rho_gas / np, m_dust = b.eps * m_gas;
   const Real h = cfg.effective_hfact() * dx;
+  const int ns = dust.nspecies;
   ParticleSetup s;
   s.dim = b.dim;
-  for (int phase = 0; phase < 2; ++phase) {
+  for (int phase = 0; phase <= ns; ++phase) {  // the gas, then species j = phase - 1
+    const Real shift = dx * phase / (ns + 1);  // one species: half a spacing
     for (int i = 0; i < np; ++i) {
       for (int d = 0; d < b.dim; ++d) {
-        s.x.push_back(lat.x[i * b.dim + d] + (phase == 1 ? 0.5 * dx : 0.0));
-        s.v.push_back(phase == 1 && d == 0 ? b.v_dust : 0.0);
+        s.x.push_back(lat.x[i * b.dim + d] + shift);
+        s.v.push_back(phase > 0 && d == 0 ? b.v_dust : 0.0);
       }
-      s.m.push_back(phase == 1 ? m_dust : m_gas);
+      s.m.push_back(phase > 0 ? m_dust : m_gas);
       s.h.push_back(h);
-      s.u.push_back(phase == 1 ? 0.0 : b.u_gas);
-      s.type.push_back(phase == 1 ? kDust : kGas);
+      s.u.push_back(phase > 0 ? 0.0 : b.u_gas);
+      s.type.push_back(phase > 0 ? kDust + phase - 1 : kGas);
     }
   }
   auto sys = std::make_unique<SphSystem>(cfg, lat.box);
