@@ -6,11 +6,14 @@
 // dust and gas pair sums, the apply). The drag's share of a step is
 // 2 x drag / step. Args: n per direction; the drag law, 0 constant t_s, 1
 // Epstein (grains of s rho_grain = 1.6e-3: t_s about 1e-3 at rho = 1, c_s = 1;
-// the stopping time is then a per-pair expression).
+// the stopping time is then a per-pair expression); the number of dust
+// species, each its own n^3 lattice (2: t_s = 1e-3 and 1e-5, the species
+// coupled through the mixture correction of mixture_drag.hpp).
 //   bench_sph_two_fluid --benchmark_out=sph_two_fluid.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
 #include <memory>
+#include <vector>
 
 #include "bench_main.hpp"
 #include "mote/setups/dustybox.hpp"
@@ -21,7 +24,7 @@ namespace {
 using mote::Real;
 using namespace mote::sph;
 
-std::unique_ptr<SphSystem> make_box(int n, int law) {
+std::unique_ptr<SphSystem> make_box(int n, int law, int species) {
   DustyBox box;
   box.dim = 3;
   box.n = n;
@@ -31,12 +34,13 @@ std::unique_ptr<SphSystem> make_box(int n, int law) {
   cfg.cs_iso = 1.0;
   DustSettings ds;
   ds.method = DustMethod::TwoFluid;
+  ds.nspecies = species;
   if (law == 0) {
     ds.drag = DragLaw::ConstantStoppingTime;
-    ds.stopping_time = {1e-3};
+    ds.stopping_time = species == 1 ? std::vector<Real>{1e-3} : std::vector<Real>{1e-3, 1e-5};
   } else {
     ds.drag = DragLaw::Epstein;
-    ds.sizes = {1e-3};
+    ds.sizes = species == 1 ? std::vector<Real>{1e-3} : std::vector<Real>{1e-3, 1e-5};
     ds.rho_grain = 1.6;
   }
   auto sys = make_dustybox(box, cfg, ds);
@@ -46,7 +50,8 @@ std::unique_ptr<SphSystem> make_box(int n, int law) {
 }
 
 void BM_TwoFluidStep(benchmark::State& state) {
-  auto sys = make_box(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  auto sys =
+      make_box(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
   for (auto _ : state) {
     sys->step();
     Kokkos::fence();
@@ -58,7 +63,8 @@ void BM_TwoFluidStep(benchmark::State& state) {
 }
 
 void BM_TwoFluidDragUpdate(benchmark::State& state) {
-  auto sys = make_box(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  auto sys =
+      make_box(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
   auto& dust = *sys->module<TwoFluidDust>();
   const Real half = 0.5 * sys->next_dt();
   for (auto _ : state) {
@@ -71,7 +77,17 @@ void BM_TwoFluidDragUpdate(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(sys->particles().n) * state.iterations(), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_TwoFluidStep)->Args({20, 0})->Args({20, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_TwoFluidDragUpdate)->Args({20, 0})->Args({20, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TwoFluidStep)
+    ->Args({20, 0, 1})
+    ->Args({20, 1, 1})
+    ->Args({20, 0, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_TwoFluidDragUpdate)
+    ->Args({20, 0, 1})
+    ->Args({20, 1, 1})
+    ->Args({20, 0, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

@@ -95,6 +95,7 @@ class Column:
         sizes, eps = power_law(du) if du["sizes_from"] == "power_law" else (du["sizes"], du["eps"])
         n = du["species"]
         self.sizes = np.resize(np.asarray(sizes, float), n)
+        self.size_label = [f"{a:g} cm" if st["grain_units"] == "cgs" else f"size {a:g}" for a in self.sizes]
         self.eps = np.resize(np.asarray(eps, float), n)
         rho_grain = du["rho_grain"]
         if st["grain_units"] == "cgs":
@@ -274,14 +275,15 @@ def front(z, f):
     return z[i - 1] + (f[i - 1] - half) / (f[i - 1] - f[i]) * (z[i] - z[i - 1])
 
 
-def dust_particles(path):
-    """Two-fluid snapshot: (z, m, h) of its dust particles (type 1); None for one fluid."""
+def dust_particles(path, species=0):
+    """Two-fluid snapshot: (z, m, h) of the dust particles of one species (type 1 + species); None for one
+    fluid."""
     import h5py
 
     with h5py.File(path) as f:
         if "dust_fraction" in f["particles"]:
             return None
-        dust = f["particles/type"][...] == 1
+        dust = f["particles/type"][...] == 1 + species
         zax = vertical_axis(mote.read_snapshot(path).deck)
         return (f["particles/position"][:, zax][dust], f["particles/mass"][...][dust], f["particles/h"][...][dust])
 
@@ -322,11 +324,15 @@ def load(path):
         z = f["particles/position"][:, zax]
         rho = f["particles/density"][...]
         if "dust_fraction" not in f["particles"]:
-            # Two-fluid (dust.method = "two-fluid"): the dust particles (type 1) carry rho_d as their
-            # density; returned as particles with eps = 1 so that eps * rho is rho_d as for one fluid.
-            dust = f["particles/type"][...] == 1
+            # Two-fluid (dust.method = "two-fluid"): the dust particles (types 1 + j) carry rho_d,j as their
+            # density; returned with eps[:, j] = 1 for the particles of species j (0 otherwise), so that
+            # eps[:, j] * rho is rho_d,j on them as for one fluid.
+            kind = f["particles/type"][...]
+            dust = kind >= 1
             v = f["particles/velocity"][:, zax]
-            return snap, z[dust], rho[dust], np.ones((int(dust.sum()), 1)), v[dust], None, None
+            nspecies = int(kind.max())
+            eps = (kind[dust][:, None] == 1 + np.arange(nspecies)[None, :]).astype(float)
+            return snap, z[dust], rho[dust], eps, v[dust], None, None
         eps = f["particles/dust_fraction"][...].reshape(len(z), -1)
         v, vg = f["particles/velocity"][:, zax], f["particles/gas_velocity"][:, zax]
         vd = None  # v_dj along z per species, written with dust.write_velocities
@@ -368,18 +374,25 @@ def main():
     dz = 0.8 * col.spacing
     picks = [int(np.argmin(abs(times - o * col.orbit))) for o in args.orbits]
     fronts = []
-    if picks:
-        zc, ref = col.solve_1d(int(np.argmax(col.eps)), [times[k] for k in picks])
+    two_fluid_run = snaps[-1][5] is None
+    # One fluid: the front of the largest dust fraction; two-fluid: of every species' particles.
+    front_species = range(len(col.eps)) if two_fluid_run else [int(np.argmax(col.eps))]
+    for j in front_species if picks else []:
+        zc, ref = col.solve_1d(j, [times[k] for k in picks])
+        name = f"species {j + 1} ({col.size_label[j]}) " if len(front_species) > 1 else ""
         for o, k, r in zip(args.orbits, picks, ref):
             snap, z, rho, eps = snaps[k][:4]
             zs, fs = sph_profile(np.abs(z), eps.sum(axis=1) * rho, dz, 3 * col.H)
-            two_fluid = dust_particles(files[k])
+            two_fluid = dust_particles(files[k], j)
             if two_fluid is not None:
                 zs, fs = smoothed_profile(*two_fluid, 0.002 * col.H, 3 * col.H)
-            f_sph, f_ref = front(zs, fs), col.top_edge(int(np.argmax(col.eps)), times[k])
-            fronts.append((o, f_sph, f_ref, zs, fs, zc, r))
+            # Several species: each against the same half-density front of its 1D grid solution (a small
+            # grain's layer has no sharp top edge); one species: A5's top edge.
+            f_sph, f_ref = front(zs, fs), (front(zc, r) if len(front_species) > 1 else col.top_edge(j, times[k]))
+            if j == front_species[-1]:
+                fronts.append((o, f_sph, f_ref, zs, fs, zc, r))
             check(abs(f_sph / f_ref - 1) <= args.front_tol,
-                  f"A5 front at {o:g} orbits: SPH {f_sph / col.H:.4f} H, 1D reference {f_ref / col.H:.4f} H "
+                  f"A5 front {name}at {o:g} orbits: SPH {f_sph / col.H:.4f} H, 1D reference {f_ref / col.H:.4f} H "
                   f"(grid solution {front(zc, r) / col.H:.4f} H), ratio {f_sph / f_ref:.4f} (tolerance {args.front_tol:g})")
     if args.compare:
         other = load(mote.list_snapshots(args.compare)[-1])
@@ -418,8 +431,9 @@ def main():
     zc, refs, l2 = [], [], []
     for j in range(len(col.eps)):
         zj, (rj,) = col.solve_1d(j, [snap.time])
-        r = np.interp(np.abs(z), zj, rj)
-        l2.append(np.sqrt(np.mean((eps[:, j] * rho - r) ** 2)) / rj.max())
+        own = eps[:, j] > 0 if two_fluid_run else slice(None)  # two-fluid: species j's particles
+        r = np.interp(np.abs(z[own]), zj, rj)
+        l2.append(np.sqrt(np.mean((eps[own, j] * rho[own] - r) ** 2)) / rj.max())
         zc.append(zj)
         refs.append(rj)
     print(f"t = {snap.time / col.orbit:.2f} orbits, L2 density error per species / max(reference): "

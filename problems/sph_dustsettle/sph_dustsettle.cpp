@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
@@ -148,9 +149,10 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   }
   std::unique_ptr<sph::SphSystem> sys;
   if (ds.method == sph::DustMethod::TwoFluid) {
-    // A dust particle per gas particle, holding the fraction dust.eps of the relaxed mass (eq. 57).
-    if (ds.nspecies != 1) throw core::DeckError("sph_dustsettle: the two-fluid column has one dust species");
-    sys = col.make_two_fluid_system(ds.species_value(ds.eps, 0));
+    // Per species a dust particle per gas particle, holding the fraction dust.eps[j] of the relaxed mass (eq. 57).
+    std::vector<Real> eps;
+    for (int j = 0; j < ds.nspecies; ++j) eps.push_back(ds.species_value(ds.eps, j));
+    sys = col.make_two_fluid_system(eps);
     add_two_fluid_dust(*sys, ds);
   } else {
     sys = col.make_system();

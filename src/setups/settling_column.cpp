@@ -26,23 +26,31 @@ std::unique_ptr<SphSystem> RelaxedColumn::make_system() const {
   return sys;
 }
 
-std::unique_ptr<SphSystem> RelaxedColumn::make_two_fluid_system(Real eps) const {
-  if (!(eps > 0.0 && eps < 1.0)) throw std::invalid_argument("settling column: the dust fraction must be in (0, 1)");
+std::unique_ptr<SphSystem> RelaxedColumn::make_two_fluid_system(const std::vector<Real>& eps) const {
+  Real eps_total = 0.0;
+  for (const Real e : eps) {
+    if (!(e > 0.0)) throw std::invalid_argument("settling column: every species' dust fraction must be positive");
+    eps_total += e;
+  }
+  if (eps.empty() || !(eps_total < 1.0))
+    throw std::invalid_argument("settling column: the dust fractions must sum to less than 1");
   ParticleSetup s = particles;
-  const int n = particles.size(), dim = particles.dim;
+  const int n = particles.size(), dim = particles.dim, species = static_cast<int>(eps.size());
   s.type.assign(n, kGas);
   s.u.resize(n, 0.0);  // isothermal: the set-up may leave u empty
-  for (int i = 0; i < n; ++i) s.m[i] *= 1.0 - eps;
-  const Real shift = 0.5 * column.width / column.nx;
-  for (int i = 0; i < n; ++i) {
-    for (int d = 0; d < dim; ++d) {
-      s.x.push_back(particles.x[dim * i + d] + (d == 0 ? shift : 0.0));  // wrapped by set_particles
-      s.v.push_back(0.0);
+  for (int i = 0; i < n; ++i) s.m[i] *= 1.0 - eps_total;
+  for (int j = 0; j < species; ++j) {
+    const Real shift = (j + 1.0) / (species + 1.0) * column.width / column.nx;
+    for (int i = 0; i < n; ++i) {
+      for (int d = 0; d < dim; ++d) {
+        s.x.push_back(particles.x[dim * i + d] + (d == 0 ? shift : 0.0));  // wrapped by set_particles
+        s.v.push_back(0.0);
+      }
+      s.m.push_back(eps[j] * particles.m[i]);
+      s.h.push_back(particles.h[i]);
+      s.u.push_back(0.0);
+      s.type.push_back(kDust + j);
     }
-    s.m.push_back(eps * particles.m[i]);
-    s.h.push_back(particles.h[i]);
-    s.u.push_back(0.0);
-    s.type.push_back(kDust);
   }
   auto sys = std::make_unique<SphSystem>(cfg, box);
   sys->set_particles(s);

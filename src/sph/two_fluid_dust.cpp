@@ -11,6 +11,7 @@
 #include "mote/io/h5_file.hpp"
 #include "mote/io/phantom_dump.hpp"
 #include "mote/sph/kernels.hpp"
+#include "mote/sph/mixture_drag.hpp"
 
 namespace mote::sph {
 
@@ -79,8 +80,11 @@ struct DragPair {
 
   /// For the pair (dust i, gas k; image code of k in i's list): the weight
   /// w = m_k W(r_ik, h_k) / rho_k, S_ik . r^ (eq. 21), the direction
-  /// e = T_i^-1 r^ of the impulse, and v~_ik . e.
-  KOKKOS_INLINE_FUNCTION bool terms(int i, int k, int img_from_i, Real& w, Real& sr, Real e[3], Real& ve) const {
+  /// e = T_i^-1 r^ of the impulse, v~_ik . e, and the pair's coefficients for
+  /// the coupling of several species: the rate 1 / (t_s (1 + eps)), xi,
+  /// Lambda and r^ . e.
+  KOKKOS_INLINE_FUNCTION bool terms(int i, int k, int img_from_i, Real& w, Real& sr, Real e[3], Real& ve,
+                                    Real coeff[4]) const {
     if (!(tinv(i, 0) > 0.0)) return false;  // a dust particle outside all gas supports feels no drag
     Real rhat[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
     for (int d = 0; d < Dim; ++d) {
@@ -101,12 +105,17 @@ struct DragPair {
     const Real mix = 1.0 / (1.0 + eps);
     const Real xi = law.decay(type(i) - kDust, ts, dt) * mix;     // eq. 6
     const Real lambda = lambda_on * ((dt + ts) * xi - dt * mix);  // eq. 19
+    coeff[0] = mix / ts;
+    coeff[1] = xi;
+    coeff[2] = lambda;
     sr = 0.0;
     ve = 0.0;
+    coeff[3] = 0.0;
     for (int d = 0; d < Dim; ++d) {
       Real ed = 0.0;
       for (int c = 0; c < Dim; ++c) ed += tinv(i, 3 * d + c) * rhat[c];
       e[d] = ed;
+      coeff[3] += rhat[d] * ed;
     }
     for (int d = 0; d < Dim; ++d) {
       const Real vdg = v(i, d) - v(k, d);
@@ -179,7 +188,7 @@ KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
 }
 
 /// Columns of TwoFluidDust::pair_terms: a pair's terms as DragPair::terms gives them.
-enum PairSlot : int { kPairW = 0, kPairSr = 1, kPairVe = 2, kPairE = 3, kPairSlots = 6 };
+enum PairSlot : int { kPairW = 0, kPairSr = 1, kPairVe = 2, kPairE = 3, kPairCoeff = 6, kPairSlots = 10 };
 
 /// kept, or new storage with 1/16 slack where kept holds fewer than n entries.
 template <class V>
@@ -276,6 +285,118 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
       });
 }
 
+/// Several species (include/mote/sph/mixture_drag.hpp): per gas particle k,
+/// the mixture of its dust neighbours, species by species, from the pairs'
+/// weights om = m_i w_ik: eps_j = sum om (r^ . e) / (Dim m_k), the ratio with
+/// which the gas's side of the pairs takes up their impulses, and the
+/// om-weighted means of the pairs' rates d_ik = 1 / (t_s (1 + eps_ik)), of
+/// v~_i - v~_k, of the non-drag a_i - a_k and of S_ik; from these the
+/// correction c_jk = -<S>_j - delta_j of every species present, into corr(k, 3 j + d)
+/// (the rates and r^ . e come from the dust pass, in the pairs' slots).
+template <int Dim>
+void mixture_corrections(TwoFluidDust& dust, const Particles& p, Real dt) {
+  const auto type = p.type;
+  const auto m = p.m;
+  const auto v = p.v;
+  const auto pk = dust.drag_pack;
+  const auto terms = dust.pair_terms;
+  const auto gas_start = dust.gas_start;
+  const auto gas_pairs = dust.gas_pairs;
+  const auto pair_dust = dust.pair_dust;
+  const auto corr = dust.mixture_corr;
+  const auto unsolved = dust.mixture_unsolved;
+  const int ns = dust.settings().nspecies;
+  par_for(
+      "sph::two_fluid_mixture", 0, p.n, KOKKOS_LAMBDA(int k) {
+        if (type(k) != kGas) return;
+        constexpr int nmax = kMaxCoupledSpecies;
+        Real weight[nmax], eps[nmax], rate[nmax], w[3 * nmax], da[3 * nmax], sm[3 * nmax];
+        for (int j = 0; j < ns; ++j) {
+          weight[j] = eps[j] = rate[j] = 0.0;
+          for (int d = 0; d < 3; ++d) w[3 * j + d] = da[3 * j + d] = sm[3 * j + d] = 0.0;
+        }
+        for (int q = gas_start(k); q < gas_start(k + 1); ++q) {
+          const int s = gas_pairs(q);
+          const Real wik = terms(s, kPairW);
+          if (wik < 0.0) continue;
+          const int i = pair_dust(s), j = type(i) - kDust;
+          const Real om = m(i) * wik;
+          const Real xi = terms(s, kPairCoeff + 1), lambda = terms(s, kPairCoeff + 2);
+          weight[j] += om;
+          eps[j] += om * terms(s, kPairCoeff + 3);
+          rate[j] += om * terms(s, kPairCoeff);
+          for (int d = 0; d < Dim; ++d) {
+            const Real vdg = v(i, d) - v(k, d), adg = pk(i, kAcc + d) - pk(k, kAcc + d);
+            w[3 * j + d] += om * vdg;
+            da[3 * j + d] += om * adg;
+            sm[3 * j + d] += om * (xi * vdg - lambda * adg);
+          }
+        }
+        int present[nmax], n = 0;  // the species present around k, compacted
+        for (int j = 0; j < ns; ++j) {
+          if (!(weight[j] > 0.0)) continue;
+          const Real inv = 1.0 / weight[j];
+          eps[n] = eps[j] / (Dim * m(k));
+          rate[n] = rate[j] * inv;
+          for (int d = 0; d < 3; ++d) {
+            w[3 * n + d] = w[3 * j + d] * inv;
+            da[3 * n + d] = da[3 * j + d] * inv;
+            sm[3 * n + d] = sm[3 * j + d] * inv;
+          }
+          present[n++] = j;
+        }
+        for (int c = 0; c < 3 * ns; ++c) corr(k, c) = 0.0;
+        if (n == 0) return;
+        Real delta[3 * nmax];
+        if (!mixture_drag_change(n, Dim, eps, rate, w, da, dt, delta)) {
+          Kokkos::atomic_add(&unsolved(), 1);
+          return;
+        }
+        for (int l = 0; l < n; ++l)
+          for (int d = 0; d < Dim; ++d) corr(k, 3 * present[l] + d) = -sm[3 * l + d] - delta[3 * l + d];
+      });
+}
+
+/// Adds each pair's c_jk . r^ to its S_ik . r^ (kept in its slot for the gas
+/// pass) and the resulting impulses to the dust particles' dv.
+template <int Dim>
+void apply_mixture_corrections(TwoFluidDust& dust, const Particles& p, const NeighbourList& nl, const Box& box) {
+  const auto type = p.type;
+  const auto x = p.x;
+  const auto offsets = nl.offsets;
+  const auto neigh = nl.neigh;
+  const auto image = nl.image;
+  const auto terms = dust.pair_terms;
+  const auto pair_start = dust.pair_start;
+  const auto corr = dust.mixture_corr;
+  const auto dv = dust.dv;
+  par_for(
+      "sph::two_fluid_mixture_apply", 0, p.n, KOKKOS_LAMBDA(int i) {
+        if (type(i) == kGas) return;
+        const int j3 = 3 * (type(i) - kDust);
+        Real acc[3] = {0.0, 0.0, 0.0};
+        int s = pair_start(i);
+        for (int jn = offsets(i); jn < offsets(i + 1); ++jn) {
+          const int k = neigh(jn);
+          if (type(k) != kGas) continue;
+          const Real w = terms(s, kPairW);
+          if (w >= 0.0) {
+            Real r[3] = {0.0, 0.0, 0.0}, r2 = 0.0, cr = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              r[d] = box.separation(x(i, d), x(k, d), image(jn), d);
+              r2 += r[d] * r[d];
+            }
+            const Real rinv = 1.0 / math::sqrt(r2);
+            for (int d = 0; d < Dim; ++d) cr += corr(k, j3 + d) * r[d] * rinv;
+            terms(s, kPairSr) += cr;
+            for (int d = 0; d < Dim; ++d) acc[d] -= w * cr * terms(s, kPairE + d);
+          }
+          ++s;
+        }
+        for (int d = 0; d < Dim; ++d) dv(i, d) += acc[d];
+      });
+}
+
 template <int Dim, class K, class Law>
 void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real lambda_on) {
   const Particles& p = sys.particles();
@@ -340,12 +461,13 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
           for (int j = offsets(i); j < offsets(i + 1); ++j) {
             const int k = neigh(j);
             if (type(k) != kGas) continue;
-            Real w, sr, e[3], ve;
-            const bool drag = pair.terms(i, k, image(j), w, sr, e, ve);
+            Real w, sr, e[3], ve, coeff[4];
+            const bool drag = pair.terms(i, k, image(j), w, sr, e, ve, coeff);
             terms(s, kPairW) = drag ? w : -1.0;
             if (drag) {
               terms(s, kPairSr) = sr;
               terms(s, kPairVe) = ve;
+              for (int c = 0; c < 4; ++c) terms(s, kPairCoeff + c) = coeff[c];
               for (int d = 0; d < Dim; ++d) terms(s, kPairE + d) = e[d];
               for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
             }
@@ -355,6 +477,10 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
         for (int d = 0; d < Dim; ++d) dv(i, d) = acc[d];
         du(i) = 0.0;
       });
+  if (dust.settings().nspecies > 1) {
+    mixture_corrections<Dim>(dust, p, dt);
+    apply_mixture_corrections<Dim>(dust, p, nl, box);
+  }
   // Pass 3: the gas, eq. 28, and its heating (eq. 29 made exact, see above),
   // from the slots of pass 2 in the order of the gas particle's list.
   par_for(
@@ -429,6 +555,9 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
   s_.validate();
   const Particles& p = sys.particles();
   const int ns = s_.nspecies;
+  if (ns > kMaxCoupledSpecies)
+    throw std::invalid_argument("dust: two-fluid dust couples at most " + std::to_string(kMaxCoupledSpecies) +
+                                " species (dust.species = " + std::to_string(ns) + ")");
   auto type = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.type);
   std::vector<long long> count(ns + 1, 0);
   for (int a = 0; a < p.n; ++a) {
@@ -452,6 +581,8 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
   size = drag.size;
   tstop = drag.stopping_time;
   species_decay = RealView1("sph::two_fluid_species_decay", ns);
+  if (ns > 1) mixture_corr = RealView2("sph::two_fluid_mixture_corr", p.n, 3 * ns);
+  mixture_unsolved = Kokkos::View<int, MemSpace>("sph::two_fluid_mixture_unsolved");
   heat_step = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_step");
   heat_total = Kokkos::View<Real, MemSpace>("sph::two_fluid_heat_total");
 }
@@ -571,16 +702,22 @@ void TwoFluidDust::add_diagnostics(const SphSystem& sys, Diagnostics& dg) const 
 
 std::vector<io::Diagnostic> TwoFluidDust::history(const SphSystem& sys) const {
   const PhaseSums gas = phase_sums(sys.particles(), false), dust = phase_sums(sys.particles(), true);
-  return {{"gas_momentum_x", gas.momentum[0]},
-          {"gas_momentum_y", gas.momentum[1]},
-          {"gas_momentum_z", gas.momentum[2]},
-          {"dust_momentum_x", dust.momentum[0]},
-          {"dust_momentum_y", dust.momentum[1]},
-          {"dust_momentum_z", dust.momentum[2]},
-          {"gas_kinetic", gas.kinetic},
-          {"dust_kinetic", dust.kinetic},
-          {"dust_mass", dust.mass},
-          {"drag_heating", drag_heating()}};
+  std::vector<io::Diagnostic> out = {{"gas_momentum_x", gas.momentum[0]},
+                                     {"gas_momentum_y", gas.momentum[1]},
+                                     {"gas_momentum_z", gas.momentum[2]},
+                                     {"dust_momentum_x", dust.momentum[0]},
+                                     {"dust_momentum_y", dust.momentum[1]},
+                                     {"dust_momentum_z", dust.momentum[2]},
+                                     {"gas_kinetic", gas.kinetic},
+                                     {"dust_kinetic", dust.kinetic},
+                                     {"dust_mass", dust.mass},
+                                     {"drag_heating", drag_heating()}};
+  if (s_.nspecies > 1) {
+    int unsolved = 0;
+    Kokkos::deep_copy(unsolved, mixture_unsolved);
+    out.push_back({"drag_mixture_unsolved", static_cast<Real>(unsolved)});
+  }
+  return out;
 }
 
 namespace {

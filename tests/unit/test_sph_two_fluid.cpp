@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "mote/core/loops.hpp"
 #include "mote/setups/dustybox.hpp"
+#include "mote/sph/mixture_drag.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/two_fluid_dust.hpp"
 
@@ -285,6 +287,14 @@ TEST(TwoFluidDust, RejectsMissingDustParticlesAndUnknownTypes) {
   DustSettings two_species = two_fluid(0.1);
   two_species.nspecies = 2;
   EXPECT_THROW(TwoFluidDust(two_species, *sys), std::invalid_argument);  // no particles of type 2
+  DustSettings too_many = two_fluid(0.1);  // beyond the coupled update's local arrays (mixture_drag.hpp)
+  too_many.nspecies = kMaxCoupledSpecies + 1;
+  try {
+    TwoFluidDust refused(too_many, *sys);
+    ADD_FAILURE() << "17 species accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 16 species"), std::string::npos) << e.what();
+  }
   ParticleSetup gas_only;
   gas_only.dim = 1;
   gas_only.x = {0.0, 1.0};

@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
@@ -47,11 +48,12 @@ struct RelaxedColumn {
   /// A system with these particles and the vertical gravity; dust not yet set.
   std::unique_ptr<SphSystem> make_system() const;
   /// The two-fluid column (VALIDATION B4): each relaxed particle's mass split
-  /// into a gas particle of (1 - eps) of it and a dust particle (type kDust, at
-  /// rest, no thermal energy) of eps of it, displaced by half the lattice
-  /// spacing along x; rho_g and rho_d are then those of the one-fluid column
-  /// with dust fraction eps.
-  std::unique_ptr<SphSystem> make_two_fluid_system(Real eps) const;
+  /// into a gas particle of (1 - sum eps) of it and, per species j, a dust
+  /// particle (type kDust + j, at rest, no thermal energy) of eps[j] of it,
+  /// displaced by (j + 1) / (N + 1) of the lattice spacing along x (half of
+  /// it for one species); rho_g and rho_d,j are then those of the one-fluid
+  /// column with dust fractions eps.
+  std::unique_ptr<SphSystem> make_two_fluid_system(const std::vector<Real>& eps) const;
 };
 
 /// Sets up the lattice and relaxes it gas-only to c.relax_time; cfg supplies

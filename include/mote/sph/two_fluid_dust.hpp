@@ -39,6 +39,10 @@
 //   w_ik = (m_k / rho_k) W(r_ik, h_k): the total energy is then conserved to
 //   round-off in any arrangement (the unit tests check 1e-10), and in a uniform
 //   mixture the heating is LAB15 eq. 22 exactly.
+// Several species: every pair also carries c_jk, the difference between the
+// exact update of the local mixture around gas particle k and the mean of its
+// pairs' own S_ik (include/mote/sph/mixture_drag.hpp), added to S_ik before the
+// projection, so that a species' drift sees the gas dragged by the others.
 // Drag laws (the shared dust laws, as in the one-fluid method, with the pair's
 // rho = rho_i + rho_k): constant t_s; constant K, t_s = rho_i rho_k / (K rho);
 // Epstein, t_s = rho_grain s / (rho v_th). No drag time-step constraint: the
@@ -96,13 +100,18 @@ class TwoFluidDust : public SphModule {
   /// builds: dust particle i's gas neighbours, in its list's order, hold the
   /// slots pair_start(i) ..; gas particle k's slots, in the order of its own
   /// list, are gas_pairs(gas_start(k) ..). Each drag update evaluates a pair
-  /// once, from the dust, into pair_terms (slots x 6: w, S.r^, v~.e, e), and
+  /// once, from the dust, into pair_terms (slots x 7: w, S.r^, v~.e, e, t_s), and
   /// the gas sums read it back in the same order as before: the same bits as
   /// evaluating every pair from both sides, at half the pair evaluations.
   View<int*> pair_start, gas_start, gas_pairs, pair_dust;
   View<int*> gas_sorted, gas_fill;  ///< work of the numbering
   View<unsigned char*> pair_code;   ///< image code of each slot's gas particle in the dust particle's list
   RealView2 pair_terms;
+  /// Several species: the correction c_jk of each gas particle k and species j
+  /// (n x 3N, include/mote/sph/mixture_drag.hpp), and the count of gas
+  /// particles whose mixture could not be solved (their c is zero; in the history).
+  RealView2 mixture_corr;
+  Kokkos::View<int, MemSpace> mixture_unsolved;
   int pair_map_builds = -1;  ///< NeighbourList::builds() the numbering belongs to
 
  private:
