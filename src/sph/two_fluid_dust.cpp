@@ -67,8 +67,9 @@ enum DragSlot : int {
   kDragSlots = 6
 };
 
-/// The pair (dust i, gas k) of LAB15 eq. 17-21 and 27-28.
-template <int Dim, class K, class Law>
+/// The pair (dust i, gas k) of LAB15 eq. 17-21 and 27-28; Coupled (several
+/// species) also gives the coefficients the mixture correction needs.
+template <int Dim, class K, class Law, bool Coupled>
 struct DragPair {
   RealView2 x, v, pk;
   RealView1 rho, cs;
@@ -80,9 +81,9 @@ struct DragPair {
 
   /// For the pair (dust i, gas k; image code of k in i's list): the weight
   /// w = m_k W(r_ik, h_k) / rho_k, S_ik . r^ (eq. 21), the direction
-  /// e = T_i^-1 r^ of the impulse, v~_ik . e, and the pair's coefficients for
-  /// the coupling of several species: the rate 1 / (t_s (1 + eps)), xi,
-  /// Lambda and r^ . e.
+  /// e = T_i^-1 r^ of the impulse, v~_ik . e, and (Coupled) the pair's
+  /// coefficients for the coupling of several species: the rate
+  /// 1 / (t_s (1 + eps)), xi, Lambda and r^ . e.
   KOKKOS_INLINE_FUNCTION bool terms(int i, int k, int img_from_i, Real& w, Real& sr, Real e[3], Real& ve,
                                     Real coeff[4]) const {
     if (!(tinv(i, 0) > 0.0)) return false;  // a dust particle outside all gas supports feels no drag
@@ -105,17 +106,19 @@ struct DragPair {
     const Real mix = 1.0 / (1.0 + eps);
     const Real xi = law.decay(type(i) - kDust, ts, dt) * mix;     // eq. 6
     const Real lambda = lambda_on * ((dt + ts) * xi - dt * mix);  // eq. 19
-    coeff[0] = mix / ts;
-    coeff[1] = xi;
-    coeff[2] = lambda;
+    if constexpr (Coupled) {
+      coeff[0] = mix / ts;
+      coeff[1] = xi;
+      coeff[2] = lambda;
+      coeff[3] = 0.0;
+    }
     sr = 0.0;
     ve = 0.0;
-    coeff[3] = 0.0;
     for (int d = 0; d < Dim; ++d) {
       Real ed = 0.0;
       for (int c = 0; c < Dim; ++c) ed += tinv(i, 3 * d + c) * rhat[c];
       e[d] = ed;
-      coeff[3] += rhat[d] * ed;
+      if constexpr (Coupled) coeff[3] += rhat[d] * ed;
     }
     for (int d = 0; d < Dim; ++d) {
       const Real vdg = v(i, d) - v(k, d);
@@ -188,7 +191,16 @@ KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
 }
 
 /// Columns of TwoFluidDust::pair_terms: a pair's terms as DragPair::terms gives them.
-enum PairSlot : int { kPairW = 0, kPairSr = 1, kPairVe = 2, kPairE = 3, kPairCoeff = 6, kPairSlots = 10 };
+/// Several species add the coefficients (rate, xi, Lambda, r^ . e) of DragPair::terms.
+enum PairSlot : int {
+  kPairW = 0,
+  kPairSr = 1,
+  kPairVe = 2,
+  kPairE = 3,
+  kPairSlots = 6,
+  kPairCoeff = 6,
+  kPairSlotsCoupled = 10
+};
 
 /// kept, or new storage with 1/16 slack where kept holds fewer than n entries.
 template <class V>
@@ -240,9 +252,10 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
   const auto gas_pairs = fitted(dust.gas_pairs, slots, "sph::two_fluid_gas_pairs");
   const auto fill = fitted(dust.gas_fill, n, "sph::two_fluid_gas_fill");
   if (dust.pair_terms.extent(0) < static_cast<std::size_t>(slots)) {
+    const int columns = dust.settings().nspecies > 1 ? kPairSlotsCoupled : kPairSlots;
     dust.pair_terms = RealView2();
     dust.pair_terms = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::two_fluid_pair_terms"),
-                                slots + slots / 16, static_cast<int>(kPairSlots));
+                                slots + slots / 16, columns);
   }
   par_for(
       "sph::two_fluid_gas_fill_zero", 0, n, KOKKOS_LAMBDA(int a) { fill(a) = 0; });
@@ -397,7 +410,7 @@ void apply_mixture_corrections(TwoFluidDust& dust, const Particles& p, const Nei
       });
 }
 
-template <int Dim, class K, class Law>
+template <int Dim, class K, class Law, bool Coupled>
 void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real lambda_on) {
   const Particles& p = sys.particles();
   const NeighbourList& nl = sys.neighbours();
@@ -451,7 +464,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
         for (int c = 0; c < 9; ++c) tinv(i, c) = inv[c];
       });
 
-  const DragPair<Dim, K, Law> pair{p.x, p.v, pk, p.rho, p.cs, tinv, p.type, box, law, dt, lambda_on};
+  const DragPair<Dim, K, Law, Coupled> pair{p.x, p.v, pk, p.rho, p.cs, tinv, p.type, box, law, dt, lambda_on};
   // Pass 2: the dust, eq. 27; every pair's terms go to its slot (w < 0: no drag).
   par_for(
       "sph::two_fluid_drag_dust", 0, n, KOKKOS_LAMBDA(int i) {
@@ -467,7 +480,8 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
             if (drag) {
               terms(s, kPairSr) = sr;
               terms(s, kPairVe) = ve;
-              for (int c = 0; c < 4; ++c) terms(s, kPairCoeff + c) = coeff[c];
+              if constexpr (Coupled)
+                for (int c = 0; c < 4; ++c) terms(s, kPairCoeff + c) = coeff[c];
               for (int d = 0; d < Dim; ++d) terms(s, kPairE + d) = e[d];
               for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
             }
@@ -477,7 +491,7 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
         for (int d = 0; d < Dim; ++d) dv(i, d) = acc[d];
         du(i) = 0.0;
       });
-  if (dust.settings().nspecies > 1) {
+  if constexpr (Coupled) {
     mixture_corrections<Dim>(dust, p, dt);
     apply_mixture_corrections<Dim>(dust, p, nl, box);
   }
@@ -539,7 +553,10 @@ struct DragDispatch {
   Real lambda_on;
   template <int Dim, class K>
   void operator()() {
-    apply_drag_impl<Dim, K, Law>(dust, sys, dt, law, lambda_on);
+    if (dust.settings().nspecies > 1)
+      apply_drag_impl<Dim, K, Law, true>(dust, sys, dt, law, lambda_on);
+    else
+      apply_drag_impl<Dim, K, Law, false>(dust, sys, dt, law, lambda_on);
   }
 };
 

@@ -100,7 +100,8 @@ class TwoFluidDust : public SphModule {
   /// builds: dust particle i's gas neighbours, in its list's order, hold the
   /// slots pair_start(i) ..; gas particle k's slots, in the order of its own
   /// list, are gas_pairs(gas_start(k) ..). Each drag update evaluates a pair
-  /// once, from the dust, into pair_terms (slots x 7: w, S.r^, v~.e, e, t_s), and
+  /// once, from the dust, into pair_terms (slots x 6: w, S.r^, v~.e, e; several
+  /// species add rate, xi, Lambda, r^.e for the mixture correction), and
   /// the gas sums read it back in the same order as before: the same bits as
   /// evaluating every pair from both sides, at half the pair evaluations.
   View<int*> pair_start, gas_start, gas_pairs, pair_dust;
