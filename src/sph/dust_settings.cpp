@@ -22,7 +22,9 @@ void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
   auto check_list = [&](const std::string& key, bool needed) {
     const size_t size = d.real_array(key).size();
     if (needed && !(size == 1 || static_cast<long long>(size) == n))
-      check.fail(key, logging::cat("needs 1 or ", n, " entries (", check.quote("dust.species"), "), got ", size));
+      check.fail(key, n == 1
+                          ? logging::cat("needs 1 entry (", check.quote("dust.species"), "), got ", size)
+                          : logging::cat("needs 1 or ", n, " entries (", check.quote("dust.species"), "), got ", size));
   };
   const std::string& drag = d.string("dust.drag");
   const bool lists = d.string("dust.sizes_from") == "list";
@@ -226,7 +228,9 @@ void DustSettings::validate() const {
   auto check = [&](const std::vector<Real>& l, const char* name, bool needed) {
     if (!needed) return;
     if (!(l.size() == 1 || static_cast<int>(l.size()) == nspecies))
-      throw std::invalid_argument(std::string("dust.") + name + " needs 1 or " + std::to_string(nspecies) + " entries");
+      throw std::invalid_argument(std::string("dust.") + name +
+                                  (nspecies == 1 ? std::string(" needs 1 entry (dust.species = 1)")
+                                                 : " needs 1 or " + std::to_string(nspecies) + " entries"));
   };
   check(k_drag, "K", drag == DragLaw::ConstantK);
   check(sizes, "sizes", drag == DragLaw::Epstein);

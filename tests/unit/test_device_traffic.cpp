@@ -215,28 +215,33 @@ TEST(DeviceTraffic, SphStepsWithoutRebuildsReadNothingBack) {
 }
 
 // Two-fluid dust (LAB15): the 3D dustybox, dust sliding through the gas (rebuilds), the drag in every step.
+// One species, and two coupled through the mixture correction (mixture_drag.hpp).
 TEST(DeviceTraffic, TwoFluidSphStepsCopyAndAllocateNothing) {
-  sph::DustyBox box;
-  box.dim = 3;
-  box.n = 8;
-  sph::SphConfig cfg;
-  cfg.eos = sph::EosType::Isothermal;
-  sph::DustSettings ds;
-  ds.method = sph::DustMethod::TwoFluid;
-  ds.drag = sph::DragLaw::ConstantStoppingTime;
-  ds.stopping_time = {1e-3};
-  sph::SphSimulation sim(sph::make_dustybox(box, cfg, ds), units::UnitSystem{});
-  double t = 0;
-  take_steps(sim, 30, t);  // the neighbour list's work arrays reach their size (the dust changes the pair counts)
-  const int builds0 = sim.system().neighbours().builds();
-  TrafficCounter counter;
-  take_steps(sim, 40, t);
-  const int rebuilds = sim.system().neighbours().builds() - builds0;
-  ASSERT_GT(rebuilds, 0) << "the steps must include neighbour rebuilds";
-  EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
-  EXPECT_EQ(counter.allocations(), 0) << counter.report();
-  // The list build's 3, and the two-fluid pair numbering's count of dust-gas pairs.
-  EXPECT_LE(counter.scalar_reads(), 4 * rebuilds) << counter.report();
+  for (const int species : {1, 2}) {
+    SCOPED_TRACE(species);
+    sph::DustyBox box;
+    box.dim = 3;
+    box.n = 8;
+    sph::SphConfig cfg;
+    cfg.eos = sph::EosType::Isothermal;
+    sph::DustSettings ds;
+    ds.method = sph::DustMethod::TwoFluid;
+    ds.nspecies = species;
+    ds.drag = sph::DragLaw::ConstantStoppingTime;
+    ds.stopping_time = species == 1 ? std::vector<Real>{1e-3} : std::vector<Real>{1e-3, 1e-5};
+    sph::SphSimulation sim(sph::make_dustybox(box, cfg, ds), units::UnitSystem{});
+    double t = 0;
+    take_steps(sim, 30, t);  // the neighbour list's work arrays reach their size (the dust changes the pair counts)
+    const int builds0 = sim.system().neighbours().builds();
+    TrafficCounter counter;
+    take_steps(sim, 40, t);
+    const int rebuilds = sim.system().neighbours().builds() - builds0;
+    ASSERT_GT(rebuilds, 0) << "the steps must include neighbour rebuilds";
+    EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+    EXPECT_EQ(counter.allocations(), 0) << counter.report();
+    // The list build's 3, and the two-fluid pair numbering's count of dust-gas pairs.
+    EXPECT_LE(counter.scalar_reads(), 4 * rebuilds) << counter.report();
+  }
 }
 
 TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {
