@@ -9,6 +9,7 @@
 #include "mote/core/deck_schema.hpp"
 #include "mote/core/log.hpp"
 #include "mote/dust/size_distribution.hpp"
+#include "mote/sph/mixture_drag.hpp"
 
 namespace mote::sph {
 
@@ -26,6 +27,9 @@ void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
                           ? logging::cat("needs 1 entry (", check.quote("dust.species"), "), got ", size)
                           : logging::cat("needs 1 or ", n, " entries (", check.quote("dust.species"), "), got ", size));
   };
+  if (d.string("dust.method") == "two-fluid" && n > kMaxCoupledSpecies)
+    check.fail("dust.species",
+               logging::cat("two-fluid dust couples at most ", kMaxCoupledSpecies, " species, got ", n));
   const std::string& drag = d.string("dust.drag");
   const bool lists = d.string("dust.sizes_from") == "list";
   check_list("dust.K", drag == "constant_K");
@@ -225,6 +229,9 @@ std::vector<Real> DustSettings::grain_densities() const {
 
 void DustSettings::validate() const {
   if (nspecies < 1) throw std::invalid_argument("dust: species must be >= 1");
+  if (method == DustMethod::TwoFluid && nspecies > kMaxCoupledSpecies)
+    throw std::invalid_argument("dust: two-fluid dust couples at most " + std::to_string(kMaxCoupledSpecies) +
+                                " species (dust.species = " + std::to_string(nspecies) + ")");
   auto check = [&](const std::vector<Real>& l, const char* name, bool needed) {
     if (!needed) return;
     if (!(l.size() == 1 || static_cast<int>(l.size()) == nspecies))

@@ -572,9 +572,6 @@ TwoFluidDust::TwoFluidDust(const DustSettings& settings, const SphSystem& sys) :
   s_.validate();
   const Particles& p = sys.particles();
   const int ns = s_.nspecies;
-  if (ns > kMaxCoupledSpecies)
-    throw std::invalid_argument("dust: two-fluid dust couples at most " + std::to_string(kMaxCoupledSpecies) +
-                                " species (dust.species = " + std::to_string(ns) + ")");
   auto type = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.type);
   std::vector<long long> count(ns + 1, 0);
   for (int a = 0; a < p.n; ++a) {

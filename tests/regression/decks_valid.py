@@ -56,6 +56,9 @@ CROSS_KEY_CASES = [
      ["(3 errors)", "key 'dust.K': needs 1 or 3 entries (dust.species = 3 (command line 'dust.species=3')), got 2",
       "key 'dust.pdv': \"gas\" needs sph.eos = \"isothermal\" (command line 'sph.eos=isothermal') to be",
       "command line 'sph.eos=isothermal': key 'sph.eos': sph_dustywave needs \"adiabatic\""]),
+    ("sph_dustybox", ["dust.species=17"],
+     ["(1 error)", "command line 'dust.species=17': key 'dust.species': two-fluid dust couples at most 16 species, "
+                   "got 17"]),
     ("viscous_ring", ["gas.Sigma_index=0.5", "gas.R_c=20"],
      ["(2 errors)", "command line 'gas.R_c=20': key 'gas.R_c': viscous_ring needs it equal to gas.R_ref = 10.0 (",
       "key 'gas.Sigma_index': viscous_ring needs it equal to"]),

@@ -287,7 +287,7 @@ TEST(TwoFluidDust, RejectsMissingDustParticlesAndUnknownTypes) {
   DustSettings two_species = two_fluid(0.1);
   two_species.nspecies = 2;
   EXPECT_THROW(TwoFluidDust(two_species, *sys), std::invalid_argument);  // no particles of type 2
-  DustSettings too_many = two_fluid(0.1);  // beyond the coupled update's local arrays (mixture_drag.hpp)
+  DustSettings too_many = two_fluid(0.1);  // beyond the coupled update's local arrays (DustSettings::validate)
   too_many.nspecies = kMaxCoupledSpecies + 1;
   try {
     TwoFluidDust refused(too_many, *sys);
