@@ -40,8 +40,6 @@ StellarIrradiation::StellarIrradiation(const mesh::Grid& grid, Star star, std::v
   check_edges(fld_band_edges_cm, "FLD bands");
   if (!(star.radius > 0.0) || !(star.T_eff > 0.0) || !std::isfinite(star.radius) || !std::isfinite(star.T_eff))
     throw std::invalid_argument("radiation: the star needs a positive radius and effective temperature");
-  if (grid.comm().size() > 1)
-    throw std::invalid_argument("radiation: stellar irradiation runs on one rank (MPI not yet supported)");
   L_ = RealView1("radiation::L_bin", nB_);
   band_of_bin_ = IntView1("radiation::band_of_bin", nB_);
   auto L_host = Kokkos::create_mirror_view(L_);
@@ -56,7 +54,31 @@ StellarIrradiation::StellarIrradiation(const mesh::Grid& grid, Star star, std::v
   Kokkos::deep_copy(L_, L_host);
   Kokkos::deep_copy(band_of_bin_, band_host);
   tau_ = RealView3("radiation::tau_star", grid.nr_total(), grid.nt_total(), nB_);
+  tau_start_ = RealView2("radiation::tau_star_start", grid.nt_total(), nB_);
+  tau_end_ = RealView2("radiation::tau_star_end", grid.nt_total(), nB_);
 }
+
+namespace {
+
+constexpr int kOpticalDepthTag = 7301;
+
+/// Radial slabs (mesh::Grid): rank r's rays start with the optical depth at
+/// which rank r - 1's end, received here (rank 0 starts from 0).
+void receive_ray_start(const core::Comm& comm, const RealView2& start) {
+  if (comm.rank() == 0) return;
+  auto host = Kokkos::create_mirror_view(start);
+  comm.sendrecv(nullptr, 0, -1, host.data(), static_cast<int>(host.size()), comm.rank() - 1, kOpticalDepthTag);
+  Kokkos::deep_copy(start, host);
+}
+
+/// Sends the optical depth at the outer edge of this rank's slab to rank r + 1.
+void send_ray_end(const core::Comm& comm, const RealView2& end) {
+  if (comm.rank() == comm.size() - 1) return;
+  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), end);
+  comm.sendrecv(host.data(), static_cast<int>(host.size()), comm.rank() + 1, nullptr, 0, -1, kOpticalDepthTag);
+}
+
+}  // namespace
 
 void StellarIrradiation::heat(const RealView3& extinction, const RealView3& absorption, const RealView2& heating,
                               const RealView3& scattering) const {
@@ -66,16 +88,23 @@ void StellarIrradiation::heat(const RealView3& extinction, const RealView3& abso
   const auto tc = grid_.tc, te = grid_.te;
   const auto V = grid_.V;
   const auto tau = tau_;
-  // tau_B to the inner edge of every cell: a scan along each ray (j, B).
+  const auto start = tau_start_, end = tau_end_;
+  // tau_B to the inner edge of every cell: a scan along each ray (j, B), over
+  // the ranks' slabs in turn (each continues the sum where the inner one ended,
+  // so that any number of ranks adds in the same order as one).
+  const core::Comm& comm = grid_.comm();
+  if (comm.size() > 1) receive_ray_start(comm, start);
   par_for(
       "radiation::stellar_optical_depth", j0, j1, 0, nB, KOKKOS_LAMBDA(int j, int B) {
         const Real inv_cos = 1.0 / math::cos(tc(j));
-        Real t = 0.0;
+        Real t = start(j, B);
         for (int i = i0; i < i1; ++i) {
           tau(i, j, B) = t;
           t += extinction(i, j, B) * (Re(i + 1) - Re(i)) * inv_cos;
         }
+        end(j, B) = t;
       });
+  if (comm.size() > 1) send_ray_end(comm, end);
   Kokkos::deep_copy(heating, 0.0);
   Kokkos::deep_copy(scattering, 0.0);
   const auto L = L_;
@@ -110,7 +139,7 @@ double absorbed_power(const mesh::Grid& grid, const FldFields& fields) {
         sum += V(i, j) * s;
       },
       P);
-  return P;
+  return grid.comm().sum(P);
 }
 
 }  // namespace mote::radiation

@@ -10,7 +10,9 @@
 // the bin's central wavelength (S_sca, eq. 46). Divided by the cell volume this
 // is eq. 45 with the solid angle of the cell written out, so that the
 // absorbed power equals the attenuated stellar power exactly. The medium
-// inside R_in is empty.
+// inside R_in is empty. Under MPI (radial slabs) each rank's rays continue
+// from the optical depth at which the inner rank's end: the ranks scan in
+// turn, and the sums are the one-rank sums, in the same order.
 #pragma once
 
 #include <vector>
@@ -52,10 +54,13 @@ class StellarIrradiation {
   RealView1 L_;           // (nB)
   IntView1 band_of_bin_;  // (nB): FLD band of each bin's central wavelength
   RealView3 tau_;         // (nr_total, nt_total, nB): optical depth to the cell's inner edge
+  RealView2 tau_start_;   // (nt_total, nB): at this rank's inner edge (0 on rank 0)
+  RealView2 tau_end_;     // (nt_total, nB): at its outer edge, for the next rank
 };
 
 /// Stellar power the grid takes per radian of azimuth: the sum over the active
-/// cells of V (S_* + sum_b S_sca^b) from the fields StellarIrradiation::heat filled.
+/// cells of V (S_* + sum_b S_sca^b) from the fields StellarIrradiation::heat
+/// filled, over all ranks.
 double absorbed_power(const mesh::Grid& grid, const FldFields& fields);
 
 }  // namespace mote::radiation
