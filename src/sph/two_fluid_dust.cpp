@@ -191,16 +191,10 @@ KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
 }
 
 /// Columns of TwoFluidDust::pair_terms: a pair's terms as DragPair::terms gives them.
-/// Several species add the coefficients (rate, xi, Lambda, r^ . e) of DragPair::terms.
-enum PairSlot : int {
-  kPairW = 0,
-  kPairSr = 1,
-  kPairVe = 2,
-  kPairE = 3,
-  kPairSlots = 6,
-  kPairCoeff = 6,
-  kPairSlotsCoupled = 10
-};
+enum PairSlot : int { kPairW = 0, kPairSr = 1, kPairVe = 2, kPairE = 3, kPairSlots = 6 };
+/// Columns of TwoFluidDust::mixture_terms (several species), in the gas
+/// particles' order: the weight w and the coefficients of DragPair::terms.
+enum MixtureSlot : int { kMixW = 0, kMixCoeff = 1, kMixSlots = 5 };
 
 /// kept, or new storage with 1/16 slack where kept holds fewer than n entries.
 template <class V>
@@ -232,6 +226,28 @@ int pair_offsets(const NeighbourList& nl, const IntView1& type, bool dust_side, 
   return total;
 }
 
+/// Several species: each slot's position in the gas order (slot_in_gas), the
+/// dust particle at each gas-ordered position (gas_dust), and room for the
+/// gas-ordered mixture_terms, so that the mixture pass reads its pairs in
+/// sequence.
+void number_mixture_pairs(TwoFluidDust& dust, int slots) {
+  const auto gas_pairs = dust.gas_pairs;
+  const auto pair_dust = dust.pair_dust;
+  const auto slot_in_gas = fitted(dust.slot_in_gas, slots, "sph::two_fluid_slot_in_gas");
+  const auto gas_dust = fitted(dust.gas_dust, slots, "sph::two_fluid_gas_dust");
+  par_for(
+      "sph::two_fluid_mixture_numbering", 0, slots, KOKKOS_LAMBDA(int q) {
+        const int s = gas_pairs(q);
+        slot_in_gas(s) = q;
+        gas_dust(q) = pair_dust(s);
+      });
+  if (dust.mixture_terms.extent(0) < static_cast<std::size_t>(slots)) {
+    dust.mixture_terms = RealView2();
+    dust.mixture_terms = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::two_fluid_mixture_terms"),
+                                   slots + slots / 16, static_cast<int>(kMixSlots));
+  }
+}
+
 /// Numbers the dust-gas pairs of the current neighbour list (see
 /// TwoFluidDust::pair_start): slots in dust order, then each gas particle's
 /// slots in the order of its own list, matched through the mirrored image
@@ -252,10 +268,9 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
   const auto gas_pairs = fitted(dust.gas_pairs, slots, "sph::two_fluid_gas_pairs");
   const auto fill = fitted(dust.gas_fill, n, "sph::two_fluid_gas_fill");
   if (dust.pair_terms.extent(0) < static_cast<std::size_t>(slots)) {
-    const int columns = dust.settings().nspecies > 1 ? kPairSlotsCoupled : kPairSlots;
     dust.pair_terms = RealView2();
     dust.pair_terms = RealView2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sph::two_fluid_pair_terms"),
-                                slots + slots / 16, columns);
+                                slots + slots / 16, static_cast<int>(kPairSlots));
   }
   par_for(
       "sph::two_fluid_gas_fill_zero", 0, n, KOKKOS_LAMBDA(int a) { fill(a) = 0; });
@@ -296,6 +311,7 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
           gas_pairs(out++) = by_dust(lo);
         }
       });
+  if (dust.settings().nspecies > 1) number_mixture_pairs(dust, slots);
 }
 
 /// Several species (include/mote/sph/mixture_drag.hpp): per gas particle k,
@@ -305,17 +321,17 @@ void update_pair_map(TwoFluidDust& dust, const Particles& p, const NeighbourList
 /// om-weighted means of the pairs' rates d_ik = 1 / (t_s (1 + eps_ik)), of
 /// v~_i - v~_k, of the non-drag a_i - a_k and of S_ik; from these the
 /// correction c_jk = -<S>_j - delta_j of every species present, into corr(k, 3 j + d)
-/// (the rates and r^ . e come from the dust pass, in the pairs' slots).
+/// (w, the rates and r^ . e come from the dust pass, in mixture_terms, which
+/// holds them in the gas particles' order).
 template <int Dim>
 void mixture_corrections(TwoFluidDust& dust, const Particles& p, Real dt) {
   const auto type = p.type;
   const auto m = p.m;
   const auto v = p.v;
   const auto pk = dust.drag_pack;
-  const auto terms = dust.pair_terms;
+  const auto mix = dust.mixture_terms;
   const auto gas_start = dust.gas_start;
-  const auto gas_pairs = dust.gas_pairs;
-  const auto pair_dust = dust.pair_dust;
+  const auto gas_dust = dust.gas_dust;
   const auto corr = dust.mixture_corr;
   const auto unsolved = dust.mixture_unsolved;
   const int ns = dust.settings().nspecies;
@@ -329,15 +345,14 @@ void mixture_corrections(TwoFluidDust& dust, const Particles& p, Real dt) {
           for (int d = 0; d < 3; ++d) w[3 * j + d] = da[3 * j + d] = sm[3 * j + d] = 0.0;
         }
         for (int q = gas_start(k); q < gas_start(k + 1); ++q) {
-          const int s = gas_pairs(q);
-          const Real wik = terms(s, kPairW);
+          const Real wik = mix(q, kMixW);
           if (wik < 0.0) continue;
-          const int i = pair_dust(s), j = type(i) - kDust;
+          const int i = gas_dust(q), j = type(i) - kDust;
           const Real om = m(i) * wik;
-          const Real xi = terms(s, kPairCoeff + 1), lambda = terms(s, kPairCoeff + 2);
+          const Real xi = mix(q, kMixCoeff + 1), lambda = mix(q, kMixCoeff + 2);
           weight[j] += om;
-          eps[j] += om * terms(s, kPairCoeff + 3);
-          rate[j] += om * terms(s, kPairCoeff);
+          eps[j] += om * mix(q, kMixCoeff + 3);
+          rate[j] += om * mix(q, kMixCoeff);
           for (int d = 0; d < Dim; ++d) {
             const Real vdg = v(i, d) - v(k, d), adg = pk(i, kAcc + d) - pk(k, kAcc + d);
             w[3 * j + d] += om * vdg;
@@ -437,6 +452,8 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
   const auto gas_start = dust.gas_start;
   const auto gas_pairs = dust.gas_pairs;
   const auto terms = dust.pair_terms;
+  const auto mix = dust.mixture_terms;        // several species only
+  const auto slot_in_gas = dust.slot_in_gas;  // several species only
 
   // Pass 1: T_i = sum_k^gas (m_k / rho_k) W(r_ik, h_k) r^ r^T and its inverse
   // (for isotropic neighbours T_i = (N_i / nu) I, eq. 30).
@@ -474,14 +491,18 @@ void apply_drag_impl(TwoFluidDust& dust, SphSystem& sys, Real dt, Law law, Real 
           for (int j = offsets(i); j < offsets(i + 1); ++j) {
             const int k = neigh(j);
             if (type(k) != kGas) continue;
-            Real w, sr, e[3], ve, coeff[4];
+            Real w, sr, e[3] = {0.0, 0.0, 0.0}, ve, coeff[4] = {0.0, 0.0, 0.0, 0.0};
             const bool drag = pair.terms(i, k, image(j), w, sr, e, ve, coeff);
             terms(s, kPairW) = drag ? w : -1.0;
+            if (Coupled) {  // a plain if: nvcc's lambdas may not first capture inside if constexpr
+              const int q = slot_in_gas(s);
+              mix(q, kMixW) = drag ? w : -1.0;
+              if (drag)
+                for (int c = 0; c < 4; ++c) mix(q, kMixCoeff + c) = coeff[c];
+            }
             if (drag) {
               terms(s, kPairSr) = sr;
               terms(s, kPairVe) = ve;
-              if constexpr (Coupled)
-                for (int c = 0; c < 4; ++c) terms(s, kPairCoeff + c) = coeff[c];
               for (int d = 0; d < Dim; ++d) terms(s, kPairE + d) = e[d];
               for (int d = 0; d < Dim; ++d) acc[d] -= w * sr * e[d];
             }

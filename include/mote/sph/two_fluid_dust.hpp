@@ -100,8 +100,7 @@ class TwoFluidDust : public SphModule {
   /// builds: dust particle i's gas neighbours, in its list's order, hold the
   /// slots pair_start(i) ..; gas particle k's slots, in the order of its own
   /// list, are gas_pairs(gas_start(k) ..). Each drag update evaluates a pair
-  /// once, from the dust, into pair_terms (slots x 6: w, S.r^, v~.e, e; several
-  /// species add rate, xi, Lambda, r^.e for the mixture correction), and
+  /// once, from the dust, into pair_terms (slots x 6: w, S.r^, v~.e, e), and
   /// the gas sums read it back in the same order as before: the same bits as
   /// evaluating every pair from both sides, at half the pair evaluations.
   View<int*> pair_start, gas_start, gas_pairs, pair_dust;
@@ -112,6 +111,11 @@ class TwoFluidDust : public SphModule {
   /// (n x 3N, include/mote/sph/mixture_drag.hpp), and the count of gas
   /// particles whose mixture could not be solved (their c is zero; in the history).
   RealView2 mixture_corr;
+  /// Several species: each pair's w, rate, xi, Lambda and r^.e at its position
+  /// in the gas order (slots x 5), slot_in_gas(slot) that position and
+  /// gas_dust(position) its dust particle; renumbered with the pairs.
+  RealView2 mixture_terms;
+  View<int*> slot_in_gas, gas_dust;
   Kokkos::View<int, MemSpace> mixture_unsolved;
   int pair_map_builds = -1;  ///< NeighbourList::builds() the numbering belongs to
 
