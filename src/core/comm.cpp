@@ -24,6 +24,14 @@ Comm Comm::world() {
   return c;
 }
 
+Comm Comm::self() {
+  Comm c;
+#ifdef MOTE_HAVE_MPI
+  c.comm_ = MPI_COMM_SELF;
+#endif
+  return c;
+}
+
 #ifdef MOTE_HAVE_MPI
 namespace {
 template <class T>

@@ -59,13 +59,6 @@ TemperatureSettings TemperatureSettings::from_deck(const core::Deck& d) {
 
 namespace {
 
-const mesh::Grid& on_one_rank(const mesh::Grid& grid) {
-  if (grid.comm().size() > 1)
-    throw core::DeckError(logging::cat("the temperature solver ([radiation]) runs on one MPI rank; this run has ",
-                                       grid.comm().size(), " (the FLD solver is not yet decomposed)"));
-  return grid;
-}
-
 /// rho_dust(i, j, s) = W(i, j, s, rho) in every cell.
 void copy_dust_densities(const View<Real****>& W, const RealView3& rho_dust) {
   par_for(
@@ -118,7 +111,7 @@ std::vector<double> sizes_in_cm(const DustDynamics& dust, const units::UnitSyste
 DiscTemperature::DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynamics& dust,
                                  const radiation::RadiationDeck& deck, TemperatureSettings settings,
                                  const units::UnitSystem& units)
-    : grid_(on_one_rank(grid)),
+    : grid_(grid),
       gas_(gas),
       dust_(dust),
       settings_(settings),

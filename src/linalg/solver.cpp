@@ -72,15 +72,16 @@ struct BicgstabWorkspace {
   Scalar rho, rho_old, alpha, omega, rv, ts, tt, rr, rho_next, rhat2, res_max;
   View<Real*> packed;
   HostView<Real*> packed_host;
-  BicgstabWorkspace(const std::string& name, int n)
+  /// n rows; the spmv operands p, s, p_hat, s_hat have n_cols entries (ghosts after the rows).
+  BicgstabWorkspace(const std::string& name, int n, int n_cols)
       : r(name + "::r", n),
         r_hat(name + "::r_hat", n),
-        p(name + "::p", n),
+        p(name + "::p", n_cols),
         v(name + "::v", n),
-        s(name + "::s", n),
+        s(name + "::s", n_cols),
         t(name + "::t", n),
-        p_hat(name + "::p_hat", n),
-        s_hat(name + "::s_hat", n),
+        p_hat(name + "::p_hat", n_cols),
+        s_hat(name + "::s_hat", n_cols),
         rho("rho"),
         rho_old("rho_old"),
         alpha("alpha"),
@@ -107,16 +108,24 @@ struct Measures {
   Real residual, rr, rho_next, omega, rhat2;
 };
 
-/// r = b - A x
-void true_residual(const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r) {
-  Kokkos::deep_copy(r, b);
-  KokkosSparse::spmv("N", -1.0, A, x, 1.0, r);
+/// The first n entries of v (v itself when it has n).
+Vector head(const Vector& v, int n) {
+  return static_cast<int>(v.extent(0)) == n ? v : Vector(Kokkos::subview(v, std::make_pair(0, n)));
+}
+
+/// out = (a, b) over the owned rows of every rank (a device scalar).
+void dot(const Distribution& d, const Scalar& out, const Vector& a, const Vector& b) {
+  KokkosBlas::dot(out, a, b);
+  if (!d.distributed()) return;
+  Real local = 0.0;
+  Kokkos::deep_copy(local, out);
+  Kokkos::deep_copy(out, d.comm.sum(local));
 }
 
 /// A fresh Krylov space from the current r: r_hat = r, p = v = 0,
 /// rho = rhat2 = (r, r), rho_old = alpha = omega = 1.
-void restart(Work& w) {
-  KokkosBlas::dot(w.rr, w.r, w.r);
+void restart(Work& w, const Distribution& d) {
+  dot(d, w.rr, w.r, w.r);
   const Vector r = w.r, r_hat = w.r_hat, p = w.p, v = w.v;
   const Scalar rr = w.rr, rho = w.rho, rhat2 = w.rhat2, rho_old = w.rho_old, alpha = w.alpha, omega = w.omega;
   par_for(
@@ -148,10 +157,11 @@ void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, cons
 
 /// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
 /// for the next iteration.
-Measures measure(Work& w, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, Real floor) {
+Measures measure(Work& w, const Distribution& d, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b,
+                 const Vector& x, Real floor) {
   max_fractional_residual(pattern, A, b, x, w.r, floor, w.res_max);
-  KokkosBlas::dot(w.rr, w.r, w.r);
-  KokkosBlas::dot(w.rho_next, w.r_hat, w.r);
+  dot(d, w.rr, w.r, w.r);
+  dot(d, w.rho_next, w.r_hat, w.r);
   const View<Real*> packed = w.packed;
   const Scalar res_max = w.res_max, rr = w.rr, rho_next = w.rho_next, omega = w.omega, rhat2 = w.rhat2, rho = w.rho;
   par_for(
@@ -165,7 +175,7 @@ Measures measure(Work& w, const CrsPattern& pattern, const CrsMatrix& A, const V
       });
   Kokkos::deep_copy(w.packed_host, w.packed);
   const auto& h = w.packed_host;
-  return {h(0), h(1), h(2), h(3), h(4)};
+  return {d.distributed() ? d.comm.max(h(0)) : h(0), h(1), h(2), h(3), h(4)};
 }
 
 /// p = r + beta (p - omega v), beta = (rho / rho_old) (alpha / omega).
@@ -173,19 +183,19 @@ void search_direction(Work& w) {
   const Vector p = w.p, r = w.r, v = w.v;
   const Scalar rho = w.rho, rho_old = w.rho_old, alpha = w.alpha, omega = w.omega;
   par_for(
-      "linalg::bicgstab_direction", 0, static_cast<int>(p.extent(0)), KOKKOS_LAMBDA(int i) {
+      "linalg::bicgstab_direction", 0, static_cast<int>(r.extent(0)), KOKKOS_LAMBDA(int i) {
         const Real beta = (rho() / rho_old()) * (alpha() / omega());
         p(i) = r(i) + beta * (p(i) - omega() * v(i));
       });
 }
 
 /// alpha = rho / (r_hat, v); s = r - alpha v.
-void half_step(Work& w) {
-  KokkosBlas::dot(w.rv, w.r_hat, w.v);
+void half_step(Work& w, const Distribution& d) {
+  dot(d, w.rv, w.r_hat, w.v);
   const Vector s = w.s, r = w.r, v = w.v;
   const Scalar rho = w.rho, rv = w.rv, alpha = w.alpha;
   par_for(
-      "linalg::bicgstab_half_step", 0, static_cast<int>(s.extent(0)), KOKKOS_LAMBDA(int i) {
+      "linalg::bicgstab_half_step", 0, static_cast<int>(r.extent(0)), KOKKOS_LAMBDA(int i) {
         const Real a = rv() != 0.0 ? rho() / rv() : 0.0;
         s(i) = r(i) - a * v(i);
         if (i == 0) alpha() = a;
@@ -193,13 +203,14 @@ void half_step(Work& w) {
 }
 
 /// omega = (t, s) / (t, t); x += alpha p_hat + omega s_hat; r = s - omega t.
-void full_step(Work& w, const Vector& p_hat, const Vector& s_hat, const Vector& x) {
-  KokkosBlas::dot(w.ts, w.t, w.s);
-  KokkosBlas::dot(w.tt, w.t, w.t);
+void full_step(Work& w, const Distribution& d, const Vector& p_hat, const Vector& s_hat, const Vector& x) {
+  const int n = static_cast<int>(w.r.extent(0));
+  dot(d, w.ts, w.t, head(w.s, n));
+  dot(d, w.tt, w.t, w.t);
   const Vector r = w.r, s = w.s, t = w.t;
   const Scalar alpha = w.alpha, omega = w.omega, ts = w.ts, tt = w.tt, rho = w.rho, rho_old = w.rho_old;
   par_for(
-      "linalg::bicgstab_full_step", 0, static_cast<int>(x.extent(0)), KOKKOS_LAMBDA(int i) {
+      "linalg::bicgstab_full_step", 0, n, KOKKOS_LAMBDA(int i) {
         const Real om = tt() > 0.0 ? ts() / tt() : 0.0;
         x(i) += alpha() * p_hat(i) + om * s_hat(i);
         r(i) = s(i) - om * t(i);
@@ -275,20 +286,67 @@ Real largest_row_size(const CrsPattern& pattern, const CrsMatrix& A, const Vecto
   return largest;
 }
 
+/// The owned columns of every row of a distributed pattern (its ghost
+/// columns come after them), the block that block-Jacobi ILU factorises.
+CrsPattern owned_block(const std::string& name, const CrsPattern& full) {
+  const RowMap row_map = full.row_map;
+  const Entries entries = full.entries;
+  const int owned = full.n_rows;
+  const auto count = KOKKOS_LAMBDA(int row) {
+    int n = 0;
+    for (Offset k = row_map(row); k < row_map(row + 1); ++k) n += entries(k) < owned ? 1 : 0;
+    return n;
+  };
+  const auto fill = KOKKOS_LAMBDA(int row, Ordinal* cols) {
+    int n = 0;
+    for (Offset k = row_map(row); k < row_map(row + 1); ++k)
+      if (entries(k) < owned) cols[n++] = entries(k);
+  };
+  return build_pattern(name, owned, count, fill);
+}
+
+/// The values of A on the owned block (the leading entries of each row).
+void copy_owned_block(const CrsPattern& full, const CrsMatrix& A, const CrsPattern& block, const CrsMatrix& B) {
+  const RowMap full_map = full.row_map, block_map = block.row_map;
+  const auto from = A.values, to = B.values;
+  par_for(
+      "linalg::owned_block_values", 0, block.n_rows, KOKKOS_LAMBDA(int row) {
+        const Offset shift = full_map(row) - block_map(row);
+        for (Offset k = block_map(row); k < block_map(row + 1); ++k) to(k) = from(k + shift);
+      });
+}
+
 bool accepted(const Measures& m, Real tolerance) { return m.residual <= tolerance; }
 
 }  // namespace
 
-LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings)
+LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings,
+                           Distribution distribution)
     : name_(name),
       pattern_(std::move(pattern)),
       settings_(settings),
       matrix_(make_matrix(name + "::A", pattern_)),
       scaled_(make_matrix(name + "::DA", pattern_)),
+      distribution_(std::move(distribution)),
       b_scaled_(name + "::Db", pattern_.n_rows),
       x_initial_(name + "::x0", pattern_.n_rows),
-      work_(std::make_unique<detail::BicgstabWorkspace>(name, pattern_.n_rows)) {
+      work_(std::make_unique<detail::BicgstabWorkspace>(name, pattern_.n_rows, pattern_.n_cols)) {
   settings_.validate();
+  if (!distribution_.distributed()) distribution_.owned = pattern_.n_rows;
+  if (distribution_.owned != pattern_.n_rows || distribution_.columns() != pattern_.n_cols)
+    throw std::invalid_argument(name + ": the pattern has " + std::to_string(pattern_.n_rows) + " rows and " +
+                                std::to_string(pattern_.n_cols) + " columns, the distribution " +
+                                std::to_string(distribution_.owned) + " owned rows and " +
+                                std::to_string(distribution_.ghosts()) + " ghost columns");
+  if (distribution_.distributed()) {
+    ghosts_ = std::make_unique<GhostExchange>(distribution_);
+    block_pattern_ = owned_block(name + "::block", pattern_);
+    block_ = make_matrix(name + "::DA_block", block_pattern_);
+    x_columns_ = Vector(name + "::x_columns", pattern_.n_cols);
+  } else {
+    block_pattern_ = pattern_;
+    block_ = scaled_;
+  }
   // The configured rung's symbolic factorisation belongs to the set-up.
   if (settings_.preconditioning.is_ilu()) factors_for(settings_.preconditioning.fill_level);
 }
@@ -302,15 +360,29 @@ LinearSolver::~LinearSolver() = default;
 
 IluFactors* LinearSolver::factors_for(int fill_level) {
   auto& slot = factors_[fill_level];
-  if (!slot) slot = std::make_unique<IluFactors>(name_ + "::ilu" + std::to_string(fill_level), pattern_, fill_level);
+  if (!slot)
+    slot = std::make_unique<IluFactors>(name_ + "::ilu" + std::to_string(fill_level), block_pattern_, fill_level);
   return slot.get();
+}
+
+void LinearSolver::residual_of(const Vector& x, const Vector& r) {
+  if (ghosts_) ghosts_->update(x);
+  Kokkos::deep_copy(r, b_scaled_);
+  KokkosSparse::spmv("N", -1.0, scaled_, x, 1.0, r);
+}
+
+void LinearSolver::apply_matrix(const Vector& u, const Vector& y) {
+  if (ghosts_) ghosts_->update(u);
+  KokkosSparse::spmv("N", 1.0, scaled_, u, 0.0, y);
 }
 
 SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const Vector& x) {
   const auto start = std::chrono::steady_clock::now();
   SolveAttempt out;
   out.preconditioning = preconditioning;
-  const Real floor = settings_.relative_floor * largest_row_size(pattern_, scaled_, b_scaled_, x);
+  const Distribution& d = distribution_;
+  const Real largest = largest_row_size(pattern_, scaled_, b_scaled_, x);
+  const Real floor = settings_.relative_floor * (d.distributed() ? d.comm.max(largest) : largest);
   auto finish = [&](const std::string& reason, bool converged) {
     out.stop_reason = reason;
     out.converged = converged;
@@ -321,8 +393,9 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   };
   IluFactors* ilu = preconditioning.is_ilu() ? factors_for(preconditioning.fill_level) : nullptr;
   if (ilu) {
-    const int bad = ilu->factorise(scaled_);
-    if (bad >= 0) {
+    if (ghosts_) copy_owned_block(pattern_, scaled_, block_pattern_, block_);
+    const int bad = ilu->factorise(block_);
+    if ((d.distributed() ? d.comm.max(bad >= 0 ? 1 : 0) : int(bad >= 0)) > 0) {
       out.worst_row = bad;
       out.stop_reason = "zero or non-finite pivot in row " + std::to_string(bad);
       return out;
@@ -330,11 +403,12 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   }
   Work& w = *work_;
   const Real tol = settings_.tolerance;
+  const int n = pattern_.n_rows;
   const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
 
-  true_residual(scaled_, b_scaled_, x, w.r);
-  restart(w);
-  Measures m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
+  residual_of(x, w.r);
+  restart(w, d);
+  Measures m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
   out.history.push_back(m.residual);
   out.residual = m.residual;
   if (accepted(m, tol)) return finish("converged", true);
@@ -342,29 +416,29 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   while (out.iterations < settings_.max_iterations) {
     ++out.iterations;
     search_direction(w);
-    if (ilu) ilu->apply(w.p, p_hat);
-    KokkosSparse::spmv("N", 1.0, scaled_, p_hat, 0.0, w.v);
-    half_step(w);
-    if (ilu) ilu->apply(w.s, s_hat);
-    KokkosSparse::spmv("N", 1.0, scaled_, s_hat, 0.0, w.t);
-    full_step(w, p_hat, s_hat, x);
-    m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
+    if (ilu) ilu->apply(head(w.p, n), head(p_hat, n));
+    apply_matrix(p_hat, w.v);
+    half_step(w, d);
+    if (ilu) ilu->apply(head(w.s, n), head(s_hat, n));
+    apply_matrix(s_hat, w.t);
+    full_step(w, d, p_hat, s_hat, x);
+    m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
     if (accepted(m, tol)) {
-      true_residual(scaled_, b_scaled_, x, w.r);
-      m = measure(w, pattern_, scaled_, b_scaled_, x, floor);
+      residual_of(x, w.r);
+      m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
       out.residual = m.residual;
       if (accepted(m, tol)) return finish("converged", true);
       ++out.restarts;  // the recursive residual drifted from b - A x
-      restart(w);
+      restart(w, d);
       continue;
     }
     if (m.omega == 0.0) return finish("breakdown: omega = 0", false);
     if (std::fabs(m.rho_next) <= 1e-14 * std::sqrt(m.rhat2 * m.rr)) {
       ++out.restarts;  // (r_hat, r) -> 0: the shadow residual is exhausted
-      restart(w);
+      restart(w, d);
     }
   }
   return finish("iteration limit", false);
@@ -373,21 +447,28 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
 SolveReport LinearSolver::try_solve(const Vector& b, const Vector& x) {
   jacobi_scale(pattern_, matrix_, b, settings_.jacobi_scaling, scaled_, b_scaled_);
   SolveReport report;
+  const Distribution& d = distribution_;
+  const int n = pattern_.n_rows;
   const int bad = first_non_finite_row(pattern_, scaled_, b_scaled_);
-  if (bad < pattern_.n_rows) {
+  if ((d.distributed() ? d.comm.max(bad < n ? 1 : 0) : int(bad < n)) > 0) {
     SolveAttempt refused;
     refused.preconditioning = settings_.preconditioning;
-    refused.worst_row = bad;
-    refused.stop_reason = "non-finite matrix entry or right-hand side in row " + std::to_string(bad);
+    refused.worst_row = bad < n ? bad : -1;
+    refused.stop_reason = bad < n ? "non-finite matrix entry or right-hand side in row " + std::to_string(bad)
+                                  : std::string("non-finite matrix entry or right-hand side on another rank");
     report.attempts.push_back(refused);
     return report;
   }
   Kokkos::deep_copy(x_initial_, x);
+  // The iteration's x carries ghost entries when distributed.
+  const Vector X = ghosts_ ? x_columns_ : x;
+  if (ghosts_) Kokkos::deep_copy(head(X, n), x);
   for (const auto& rung : settings_.ladder()) {
-    if (!report.attempts.empty()) Kokkos::deep_copy(x, x_initial_);
-    report.attempts.push_back(attempt(rung, x));
+    if (!report.attempts.empty()) Kokkos::deep_copy(head(X, n), x_initial_);
+    report.attempts.push_back(attempt(rung, X));
     if (report.attempts.back().converged) {
       report.converged = true;
+      if (ghosts_) Kokkos::deep_copy(x, head(X, n));
       return report;
     }
   }

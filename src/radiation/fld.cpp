@@ -35,40 +35,99 @@ void FldSettings::validate() const {
 namespace {
 
 /// Active cells and rows of the FLD system; ghost references resolved
-/// through the boundaries.
+/// through the boundaries. Under MPI a radial side may face the neighbouring
+/// rank's slab: its first ghost row holds that rank's cells (a halo), whose
+/// E^b unknowns are ghost columns after the owned rows, the left slab's
+/// first, each as (theta cell, band).
 struct CellMap {
   int ng, nr, nt, nb;
   bool reflect_inner, reflect_outer, reflect_lower, reflect_upper;
+  bool slab_inner, slab_outer;  // a neighbour rank's slab beyond R_in / R_out of this rank
 
   KOKKOS_INLINE_FUNCTION int cell(int i, int j) const { return (i - ng) * nt + (j - ng); }
   KOKKOS_INLINE_FUNCTION int i_of(int c) const { return ng + c / nt; }
   KOKKOS_INLINE_FUNCTION int j_of(int c) const { return ng + c % nt; }
   KOKKOS_INLINE_FUNCTION int row_E(int c, int b) const { return c * (nb + 1) + b; }
   KOKKOS_INLINE_FUNCTION int row_B(int c) const { return c * (nb + 1) + nb; }
-  /// The active cell whose value (i, j) holds (one ghost layer at most), or
-  /// -1 where an open side gives the external field.
-  KOKKOS_INLINE_FUNCTION int resolve(int i, int j) const {
-    if (i < ng) {
-      if (!reflect_inner) return -1;
+  KOKKOS_INLINE_FUNCTION int owned_rows() const { return nr * nt * (nb + 1); }
+  /// Ghost column of band b of the neighbour's cell in theta row j.
+  KOKKOS_INLINE_FUNCTION int ghost_E(bool outer, int j, int b) const {
+    return owned_rows() + (outer && slab_inner ? nt * nb : 0) + (j - ng) * nb + b;
+  }
+  /// Moves (i, j) (one ghost layer at most) to the cell whose value it holds:
+  /// mirrored across reflecting sides, kept in the ghost row beyond a
+  /// neighbour's slab; false where an open side gives the external field.
+  KOKKOS_INLINE_FUNCTION bool source(int& i, int& j) const {
+    if (i < ng && !slab_inner) {
+      if (!reflect_inner) return false;
       i = 2 * ng - 1 - i;
-    } else if (i >= ng + nr) {
-      if (!reflect_outer) return -1;
+    } else if (i >= ng + nr && !slab_outer) {
+      if (!reflect_outer) return false;
       i = 2 * (ng + nr) - 1 - i;
     }
     if (j < ng) {
-      if (!reflect_lower) return -1;
+      if (!reflect_lower) return false;
       j = 2 * ng - 1 - j;
     } else if (j >= ng + nt) {
-      if (!reflect_upper) return -1;
+      if (!reflect_upper) return false;
       j = 2 * (ng + nt) - 1 - j;
     }
-    return cell(i, j);
+    return true;
+  }
+  /// Column of E^b at a cell given by source(): owned, or a ghost column.
+  KOKKOS_INLINE_FUNCTION int column_E(int i, int j, int b) const {
+    if (i < ng) return ghost_E(false, j, b);
+    if (i >= ng + nr) return ghost_E(true, j, b);
+    return row_E(cell(i, j), b);
+  }
+  /// E^b of (i, j) from the field (with its halo) or the external field.
+  KOKKOS_INLINE_FUNCTION Real value_E(const RealView3& E, const RealView1& E_ext, int i, int j, int b) const {
+    return source(i, j) ? E(i, j, b) : E_ext(b);
   }
 };
 
 CellMap cell_map(const mesh::Grid& grid, int nb, const FldBoundaries& b) {
   const auto reflect = [](RadiationBoundary side) { return side == RadiationBoundary::Reflecting; };
-  return {grid.ng, grid.nr, grid.nt, nb, reflect(b.inner), reflect(b.outer), reflect(b.lower), reflect(b.upper)};
+  const bool slab_inner = !grid.has_inner_boundary(), slab_outer = !grid.has_outer_boundary();
+  return {grid.ng,
+          grid.nr,
+          grid.nt,
+          nb,
+          !slab_inner && reflect(b.inner),
+          !slab_outer && reflect(b.outer),
+          reflect(b.lower),
+          reflect(b.upper),
+          slab_inner,
+          slab_outer};
+}
+
+/// The E^b rows of the cells in column i, as (theta cell, band): what the
+/// neighbouring slab on that side holds as ghost columns.
+IntView1 slab_side_rows(const CellMap& map, bool active, int i, const std::string& name) {
+  const int per_side = map.nt * map.nb;
+  IntView1 rows(name, active ? per_side : 0);
+  if (active)
+    par_for(
+        "radiation::fld_ghost_rows", 0, per_side,
+        KOKKOS_LAMBDA(int k) { rows(k) = map.row_E(map.cell(i, map.ng + k / map.nb), k % map.nb); });
+  return rows;
+}
+
+/// The owned rows and the ghost columns of the neighbouring slabs (E^b of
+/// their cells next to this rank's), for linalg's distributed solve.
+linalg::Distribution fld_distribution(const mesh::Grid& grid, const CellMap& map) {
+  linalg::Distribution d;
+  if (grid.comm().size() == 1) return d;
+  d.comm = grid.comm();
+  d.owned = map.owned_rows();
+  const int per_side = map.nt * map.nb;
+  d.left = map.slab_inner ? grid.comm().rank() - 1 : -1;
+  d.right = map.slab_outer ? grid.comm().rank() + 1 : -1;
+  d.from_left = map.slab_inner ? per_side : 0;
+  d.from_right = map.slab_outer ? per_side : 0;
+  d.to_left = slab_side_rows(map, map.slab_inner, map.ng, "radiation::fld_to_left");
+  d.to_right = slab_side_rows(map, map.slab_outer, map.ng + map.nr - 1, "radiation::fld_to_right");
+  return d;
 }
 
 /// Inserts col into the sorted cols[0 .. n) unless present.
@@ -89,8 +148,8 @@ KOKKOS_INLINE_FUNCTION int band_row_columns(const CellMap& map, int c, int b, Or
   const int i = map.i_of(c), j = map.j_of(c);
   for (int di = -1; di <= 1; ++di)
     for (int dj = -1; dj <= 1; ++dj) {
-      const int other = map.resolve(i + di, j + dj);
-      if (other >= 0) insert_sorted(cols, n, map.row_E(other, b));
+      int a = i + di, d = j + dj;
+      if (map.source(a, d)) insert_sorted(cols, n, map.column_E(a, d, b));
     }
   return n;
 }
@@ -112,16 +171,15 @@ linalg::CrsPattern fld_pattern(const CellMap& map) {
           return;
         }
         band_row_columns(map, c, component, cols);
-      });
+      },
+      map.owned_rows() + (map.slab_inner ? map.nt * map.nb : 0) + (map.slab_outer ? map.nt * map.nb : 0));
 }
 
 }  // namespace
 
 FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationConstants constants)
-    : grid_(grid), settings_(std::move(settings)), constants_(constants), nb_(settings_.bands()) {
+    : grid_(grid), halo_(grid), settings_(std::move(settings)), constants_(constants), nb_(settings_.bands()) {
   settings_.validate();
-  if (grid.comm().size() > 1)
-    throw std::invalid_argument("radiation: the FLD solver runs on one rank (MPI decomposition not yet supported)");
   if (!(constants.c > 0.0 && constants.sigma > 0.0))
     throw std::invalid_argument("radiation: c and sigma must be positive in code units");
   band_edges_ = RealView1("radiation::band_edges", nb_ + 1);
@@ -145,7 +203,8 @@ FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationCons
     coef_.push_back(mesh::diffusion_coefficients(grid, D_.back()));
   }
   const CellMap map = cell_map(grid, nb_, settings_.boundaries);
-  solver_ = std::make_unique<linalg::LinearSolver>("radiation::fld", fld_pattern(map), settings_.solver);
+  solver_ = std::make_unique<linalg::LinearSolver>("radiation::fld", fld_pattern(map), settings_.solver,
+                                                   fld_distribution(grid, map));
   T_previous_ = RealView2("radiation::T_previous", grid.nr_total(), grid.nt_total());
   rhs_ = linalg::Vector("radiation::rhs", solver_->pattern().n_rows);
   x_ = linalg::Vector("radiation::x", solver_->pattern().n_rows);
@@ -195,20 +254,18 @@ void equilibrium_field(const mesh::Grid& grid, const RealView1& edges, Real c, R
       });
 }
 
-/// D = min(c lambda / rho kappa_R, c r) at active cells (eq. 41-43), from E^n with its
-/// gradient from the four neighbours; ghost cells copy the nearest active cell.
+/// D = min(c lambda / rho kappa_R, c r) at active cells (eq. 41-43), from E^n (with its
+/// halo) with its gradient from the four neighbours; ghost cells copy the nearest active
+/// cell, but for the ghost rows of a neighbour's slab, which the halo exchange fills.
 void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, int b, Real c,
                                    const RealView3& extinction, const RealView3& E, const RealView1& E_ext,
-                                   const RealView2& D) {
+                                   mesh::RadialHalo& halo, const RealView2& D) {
   const auto Rc = grid.Rc;
   const auto Zc = grid.Zc;
   par_for(
       "radiation::fld_diffusion_coefficient", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
       KOKKOS_LAMBDA(int i, int j) {
-        const auto value = [&](int a, int d) {
-          const int other = map.resolve(a, d);
-          return other >= 0 ? E(map.i_of(other), map.j_of(other), b) : E_ext(b);
-        };
+        const auto value = [&](int a, int d) { return map.value_E(E, E_ext, a, d, b); };
         const Real e1R = Rc(i + 1) - Rc(i - 1), e1Z = Zc(i + 1, j) - Zc(i - 1, j);
         const Real e2R = 0.0, e2Z = Zc(i, j + 1) - Zc(i, j - 1);  // a column has one R
         const Real d1 = value(i + 1, j) - value(i - 1, j), d2 = value(i, j + 1) - value(i, j - 1);
@@ -227,9 +284,11 @@ void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, i
   const int i0 = grid.i_begin(), i1 = grid.i_end() - 1, j0 = grid.j_begin(), j1 = grid.j_end() - 1;
   par_for(
       "radiation::fld_diffusion_ghosts", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        if ((i < i0 && map.slab_inner) || (i > i1 && map.slab_outer)) return;
         const int ia = i < i0 ? i0 : (i > i1 ? i1 : i), ja = j < j0 ? j0 : (j > j1 ? j1 : j);
         if (ia != i || ja != j) D(i, j) = D(ia, ja);
       });
+  halo.exchange(D);
 }
 
 /// Adds v to the entry (row, col), which the pattern holds.
@@ -266,9 +325,9 @@ void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_d
         // sign * (coefficient of the cell (ci, cj)) for every cell of a face flux.
         const auto face = [&](Real sign, const Real* cf, const int* ci, const int* cj) {
           for (int q = 0; q < 4; ++q) {
-            const int other = map.resolve(ci[q], cj[q]);
-            if (other >= 0)
-              add_entry(row_map, entries, values, row, map.row_E(other, b), sign * cf[q] / c);
+            int a = ci[q], d = cj[q];
+            if (map.source(a, d))
+              add_entry(row_map, entries, values, row, map.column_E(a, d, b), sign * cf[q] / c);
             else
               r -= sign * cf[q] * E_ext(b);
           }
@@ -345,8 +404,9 @@ void FldSolver::equilibrate_radiation(FldState& state) const {
 
 void FldSolver::update_diffusion(const FldFields& fields, const FldState& state) {
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  halo_.exchange(state.E);
   for (int b = 0; b < nb_; ++b) {
-    compute_diffusion_coefficient(grid_, map, b, constants_.c, fields.extinction, state.E, E_ext_, D_[b]);
+    compute_diffusion_coefficient(grid_, map, b, constants_.c, fields.extinction, state.E, E_ext_, halo_, D_[b]);
     mesh::update_diffusion_coefficients(grid_, D_[b], coef_[b]);
   }
 }
@@ -394,11 +454,13 @@ void unpack_solution(const mesh::Grid& grid, const CellMap& map, Real c, Real si
 
 void FldSolver::write_back(FldState& state) const {
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
-  const int bad = first_bad_temperature(map, x_);
-  if (bad < map.nr * map.nt)
-    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite in cell (" +
-                             std::to_string(map.i_of(bad) - map.ng) + ", " + std::to_string(map.j_of(bad) - map.ng) +
-                             "); the previous temperature is kept");
+  const int bad = first_bad_temperature(map, x_), cells = map.nr * map.nt;
+  if (grid_.comm().max(bad < cells ? 1 : 0) > 0)
+    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite " +
+                             (bad < cells ? "in cell (" + std::to_string(grid_.i_offset + map.i_of(bad) - map.ng) +
+                                                ", " + std::to_string(map.j_of(bad) - map.ng) + ")"
+                                          : std::string("on another rank")) +
+                             "; the previous temperature is kept");
   unpack_solution(grid_, map, constants_.c, constants_.sigma, x_, state);
 }
 
@@ -411,10 +473,11 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
   initial_guess(grid_, map, constants_.c, constants_.sigma, state, x_);
   const int per_cell = nb_ + 1;
-  const auto describe = [map, per_cell](int row) {
+  const int i_offset = grid_.i_offset;
+  const auto describe = [map, per_cell, i_offset](int row) {
     const int cell = row / per_cell, component = row % per_cell;
     return (component == per_cell - 1 ? std::string("B") : "band " + std::to_string(component)) + ", cell (" +
-           std::to_string(map.i_of(cell) - map.ng) + ", " + std::to_string(map.j_of(cell) - map.ng) + ")";
+           std::to_string(i_offset + map.i_of(cell) - map.ng) + ", " + std::to_string(map.j_of(cell) - map.ng) + ")";
   };
   auto report = solver_->solve(rhs_, x_, describe);
   write_back(state);
@@ -427,7 +490,7 @@ double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const
       "radiation::fld_temperature_change", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
       KOKKOS_LAMBDA(int i, int j, double& m) { m = math::fmax(m, math::fabs(T(i, j) / T_reference(i, j) - 1.0)); },
       Kokkos::Max<double>(worst));
-  return worst;
+  return grid.comm().max(worst);
 }
 
 RealView2 total_energy_density(const RealView3& E) {
@@ -477,17 +540,14 @@ namespace {
 double open_face_power(const CellMap& map, int b, const mesh::DiffusionCoefficients& coef, const RealView3& E,
                        const RealView1& E_ext) {
   const int ng = map.ng, nr = map.nr, nt = map.nt;
-  const auto value = [=] KOKKOS_FUNCTION(int i, int j) {
-    const int other = map.resolve(i, j);
-    return other >= 0 ? E(map.i_of(other), map.j_of(other), b) : E_ext(b);
-  };
+  const auto value = [=] KOKKOS_FUNCTION(int i, int j) { return map.value_E(E, E_ext, i, j, b); };
   double power = 0.0;
   par_reduce(
       "radiation::fld_open_face_power", 0, 2 * (nt + nr),
       KOKKOS_LAMBDA(int f, double& sum) {
         if (f < 2 * nt) {  // radial faces: f < nt inner, else outer
           const bool outer = f >= nt;
-          if (outer ? map.reflect_outer : map.reflect_inner) return;
+          if (outer ? (map.reflect_outer || map.slab_outer) : (map.reflect_inner || map.slab_inner)) return;
           const int I = outer ? ng + nr : ng, j = ng + f % nt;
           const Real flux = coef.radial(I, j, 0) * value(I - 1, j) + coef.radial(I, j, 1) * value(I, j) +
                             coef.radial(I, j, 2) * value(I - 1, j - 1) + coef.radial(I, j, 3) * value(I, j + 1);
@@ -512,7 +572,7 @@ double FldSolver::open_boundary_luminosity(const FldState& state) const {
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
   double total = 0.0;
   for (int b = 0; b < nb_; ++b) total += open_face_power(map, b, coef_[b], state.E, E_ext_);
-  return total;
+  return grid_.comm().sum(total);
 }
 
 }  // namespace mote::radiation

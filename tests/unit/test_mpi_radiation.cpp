@@ -1,4 +1,5 @@
-// On 2 ranks (radial slabs): the stellar irradiation's optical depth runs
+// On 2 ranks (radial slabs): the FLD solve gives the one-rank temperature,
+// and the stellar irradiation's optical depth runs
 // through the slabs in turn (RBO24 eq. 45-46), so that every cell's absorbed
 // and scattered power is the one-rank figure, computed here on the host from
 // the global grid, and the grid's total is the same on every rank.
@@ -9,6 +10,7 @@
 
 #include "mote/core/comm.hpp"
 #include "mote/core/units.hpp"
+#include "mote/radiation/fld.hpp"
 #include "mote/radiation/irradiation.hpp"
 
 namespace {
@@ -91,4 +93,123 @@ TEST(MpiIrradiation, SlabsGiveTheOneRankPowerInEveryCell) {
   EXPECT_LE(worst_all, 1e-12);
   EXPECT_NEAR(absorbed / total, 1.0, 1e-12);
   EXPECT_EQ(comm.max(absorbed), comm.min(absorbed));  // every rank has the grid's total
+}
+
+namespace {
+
+constexpr int kBands = 3;
+
+/// The FLD fields and starting temperature of global cell (ig, j): optical
+/// depths of order one per cell, varying across the slabs, bands and rows.
+struct FldProblem {
+  static double absorption(int ig, int j, int b) {
+    return 1e-13 * (3.0 - b) * (1.0 + 0.5 * j) / (1.0 + 0.2 * ig) * (1.0 + 0.3 * std::sin(0.9 * ig));
+  }
+  static double heating(int ig, int j) { return 1e-12 * (1.0 + 0.3 * ig) * std::exp(-0.2 * j); }
+  static double temperature(int ig, int j) { return 40.0 + 10.0 * std::sin(0.4 * ig + 0.3 * j); }
+};
+
+radiation::FldSettings fld_settings() {
+  radiation::FldSettings s;
+  s.band_edges_cm = {1e-4, 1e-3, 1e-2, 1.0};
+  s.boundaries.T_ext = 20.0;  // open R_in, R_out and upper side; reflecting mid-plane
+  s.solver.tolerance = 1e-10;
+  return s;
+}
+
+/// Fills the fields and T of the active cells of `grid` from the global problem.
+void fill_problem(const mesh::Grid& grid, radiation::FldFields& fields, radiation::FldState& state) {
+  auto k = Kokkos::create_mirror_view(fields.absorption);
+  auto chi = Kokkos::create_mirror_view(fields.extinction);
+  auto sca = Kokkos::create_mirror_view(fields.scattering_source);
+  auto heat = Kokkos::create_mirror_view(fields.heating);
+  auto cv = Kokkos::create_mirror_view(fields.heat_capacity);
+  auto T = Kokkos::create_mirror_view(state.T);
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const int ig = grid.i_offset + i - grid.i_begin(), jg = j - grid.j_begin();
+      heat(i, j) = FldProblem::heating(ig, jg);
+      cv(i, j) = 1e-9;
+      T(i, j) = FldProblem::temperature(ig, jg);
+      for (int b = 0; b < kBands; ++b) {
+        k(i, j, b) = FldProblem::absorption(ig, jg, b);
+        chi(i, j, b) = 1.5 * k(i, j, b);
+        sca(i, j, b) = 0.1 * heat(i, j) * (b + 1);
+      }
+    }
+  Kokkos::deep_copy(fields.absorption, k);
+  Kokkos::deep_copy(fields.extinction, chi);
+  Kokkos::deep_copy(fields.scattering_source, sca);
+  Kokkos::deep_copy(fields.heating, heat);
+  Kokkos::deep_copy(fields.heat_capacity, cv);
+  Kokkos::deep_copy(state.T, T);
+}
+
+/// Two implicit steps and the lagged steady state, as DiscTemperature runs them.
+struct FldRun {
+  radiation::FldState state;
+  double luminosity = 0.0;
+  int iterations = 0;
+  int solves = 0;
+};
+
+FldRun run_fld(const mesh::Grid& grid) {
+  radiation::FldSolver fld(grid, fld_settings(), radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  FldRun run{fld.make_state()};
+  fill_problem(grid, fields, run.state);
+  fld.equilibrate_radiation(run.state);
+  for (int n = 0; n < 2; ++n) run.iterations += fld.step(1e6, fields, run.state).total_iterations();
+  const auto relaxed = fld.relax_to_steady_state(fields, run.state, 1e-9, 40);
+  run.iterations += relaxed.iterations;
+  run.solves = 2 + relaxed.solves;
+  run.luminosity = fld.open_boundary_luminosity(run.state);
+  return run;
+}
+
+}  // namespace
+
+// On 2 ranks the FLD system is linalg's distributed one (ghost columns for the
+// neighbouring slab's cells, halo exchange before each spmv, dot products over
+// the ranks, block-Jacobi ILU(0)): its T and E^b are the one-rank solution
+// (here computed by each rank alone on the whole grid) to the solver's
+// tolerance, after two implicit steps and the lagged steady state.
+TEST(MpiFld, SlabsGiveTheOneRankTemperature) {
+  const auto comm = core::Comm::world();
+  ASSERT_EQ(comm.size(), 2) << "run this test on 2 ranks";
+  mesh::GridSpec spec;
+  spec.nr = 24;
+  spec.ntheta = 8;
+  spec.r_edges = mesh::log_edges(1e14, 6e14, spec.nr);
+  spec.theta_edges = mesh::linear_edges(0.0, 0.4, spec.ntheta);
+  const mesh::Grid slabs(spec, comm), whole(spec, core::Comm::self());
+  ASSERT_LT(slabs.nr, spec.nr);
+  const FldRun split = run_fld(slabs), alone = run_fld(whole);
+  auto T2 = Kokkos::create_mirror_view_and_copy(HostSpace(), split.state.T);
+  auto E2 = Kokkos::create_mirror_view_and_copy(HostSpace(), split.state.E);
+  auto T1 = Kokkos::create_mirror_view_and_copy(HostSpace(), alone.state.T);
+  auto E1 = Kokkos::create_mirror_view_and_copy(HostSpace(), alone.state.E);
+  // E^b against the cell's total field, which the convergence test measures
+  // (a band far in the Wien tail has no relative accuracy of its own).
+  double worst_T = 0.0, worst_E = 0.0;
+  for (int i = slabs.i_begin(); i < slabs.i_end(); ++i)
+    for (int j = slabs.j_begin(); j < slabs.j_end(); ++j) {
+      const int iw = whole.i_begin() + slabs.i_offset + i - slabs.i_begin();
+      worst_T = std::fmax(worst_T, std::fabs(T2(i, j) / T1(iw, j) - 1.0));
+      double total = 0.0;
+      for (int b = 0; b < kBands; ++b) total += E1(iw, j, b);
+      for (int b = 0; b < kBands; ++b) worst_E = std::fmax(worst_E, std::fabs(E2(i, j, b) - E1(iw, j, b)) / total);
+    }
+  worst_T = comm.max(worst_T);
+  worst_E = comm.max(worst_E);
+  const double power = std::fabs(split.luminosity / alone.luminosity - 1.0);
+  if (comm.is_root())
+    std::printf(
+        "FLD on 2 ranks against one: worst T %.3e, worst E %.3e, open-boundary power %.3e; %d solves, BiCGStab "
+        "iterations %d (2 ranks) and %d (1 rank)\n",
+        worst_T, worst_E, power, split.solves, split.iterations, alone.iterations);
+  EXPECT_LE(worst_T, 1e-8);
+  EXPECT_LE(worst_E, 1e-8);
+  EXPECT_LE(power, 1e-8);
+  EXPECT_EQ(comm.max(split.luminosity), comm.min(split.luminosity));  // every rank has the grid's total
 }

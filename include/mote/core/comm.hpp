@@ -17,6 +17,8 @@ class Comm {
  public:
   /// The world communicator (one rank without MPI).
   static Comm world();
+  /// This rank alone (MPI_COMM_SELF): a one-rank reference computed beside a decomposed run.
+  static Comm self();
 
   int rank() const { return rank_; }
   int size() const { return size_; }

@@ -61,7 +61,7 @@ struct TemperatureSettings {
 
 class DiscTemperature {
  public:
-  /// Throws core::DeckError on more than one MPI rank.
+  /// On several MPI ranks the FLD system is solved as one distributed system (radiation/fld.hpp).
   DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynamics& dust, const radiation::RadiationDeck& deck,
                   TemperatureSettings settings, const units::UnitSystem& units);
 

@@ -24,9 +24,12 @@ using Values = View<Real*>;
 /// Right-hand sides and solutions (a RealView1 converts to it).
 using Vector = Kokkos::View<Real*, Kokkos::LayoutLeft, MemSpace>;
 
-/// The fixed structure of a square sparse matrix.
+/// The fixed structure of a sparse matrix: square, or the owned rows of a
+/// distributed one, whose ghost columns [n_rows, n_cols) follow the owned
+/// columns (linalg/distribution.hpp).
 struct CrsPattern {
   int n_rows = 0;
+  int n_cols = 0;   // n_rows for a square matrix
   RowMap row_map;   // (n_rows + 1)
   Entries entries;  // (nnz), strictly increasing within a row
   RowMap diagonal;  // (n_rows): index into entries of (row, row)
@@ -36,7 +39,7 @@ struct CrsPattern {
 /// A zero-valued matrix on `pattern` (shares its row map and entries).
 CrsMatrix make_matrix(const std::string& name, const CrsPattern& pattern);
 
-/// Locates the diagonals and checks the pattern: columns in [0, n_rows),
+/// Locates the diagonals and checks the pattern: columns in [0, n_cols),
 /// strictly increasing in every row, every diagonal present. Throws
 /// std::invalid_argument naming the first bad row.
 void finish_pattern(const std::string& name, CrsPattern& pattern);
@@ -45,10 +48,12 @@ void finish_pattern(const std::string& name, CrsPattern& pattern);
 ///   count(row) -> number of entries in the row;
 ///   fill(row, Ordinal* cols) writes them into cols[0 .. count-1] in
 ///   increasing order.
+/// n_cols < 0: square.
 template <class Count, class Fill>
-CrsPattern build_pattern(const std::string& name, int n_rows, const Count& count, const Fill& fill) {
+CrsPattern build_pattern(const std::string& name, int n_rows, const Count& count, const Fill& fill, int n_cols = -1) {
   CrsPattern pattern;
   pattern.n_rows = n_rows;
+  pattern.n_cols = n_cols < 0 ? n_rows : n_cols;
   pattern.row_map = RowMap(name + "::row_map", n_rows + 1);
   const RowMap row_map = pattern.row_map;
   par_for(

@@ -20,6 +20,13 @@
 // current matrix values. The scalars of the iteration stay on the device; one
 // small copy per iteration brings the convergence measures to the host.
 //
+// Distributed (linalg/distribution.hpp): each rank holds its owned rows with
+// ghost columns; spmv operands get their ghost values first, dot products and
+// maxima are summed / taken over the ranks (a host round trip each), and the
+// ILU(k) preconditioner factorises the owned block alone (block Jacobi), so
+// that its effect and the iteration counts depend on the decomposition. On one
+// rank nothing of this runs and the arithmetic is that of the square solver.
+//
 // A matrix or right-hand side with a non-finite value is refused before any
 // iteration. When a solve fails (iteration limit, breakdown omega = 0, a
 // non-finite residual or ILU pivot; Kokkos Kernels itself replaces an exactly
@@ -38,6 +45,7 @@
 #include <vector>
 
 #include "mote/linalg/crs_pattern.hpp"
+#include "mote/linalg/distribution.hpp"
 
 namespace mote::linalg {
 
@@ -116,7 +124,9 @@ struct BicgstabWorkspace;
 
 class LinearSolver {
  public:
-  LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings);
+  /// A square pattern on one rank, or the owned rows (with ghost columns) of
+  /// `distribution` when it spans several ranks.
+  LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings, Distribution distribution = {});
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
@@ -128,7 +138,8 @@ class LinearSolver {
   /// Non-zeros of the ILU(fill_level) factors L + U (0 until that rung was needed).
   int factor_nonzeros(int fill_level) const;
 
-  /// Solves matrix() x = b with x as the initial guess. Throws SolveFailure
+  /// Solves matrix() x = b with x as the initial guess (owned rows: b and x
+  /// have n_rows entries on each rank). Throws SolveFailure
   /// (x unchanged) when every rung of the ladder fails.
   SolveReport solve(const Vector& b, const Vector& x, const RowDescriber& describe = {});
   /// As solve, but returns the failed report instead of throwing.
@@ -137,6 +148,10 @@ class LinearSolver {
  private:
   SolveAttempt attempt(const Preconditioning& preconditioning, const Vector& x);
   IluFactors* factors_for(int fill_level);
+  /// r = b - A x with the ghost values of x brought across first.
+  void residual_of(const Vector& x, const Vector& r);
+  /// y = A u with the ghost values of u brought across first.
+  void apply_matrix(const Vector& u, const Vector& y);
   std::string failure_message(const SolveReport& report, const RowDescriber& describe) const;
 
   std::string name_;
@@ -144,7 +159,11 @@ class LinearSolver {
   SolverSettings settings_;
   CrsMatrix matrix_;  // the caller's values
   CrsMatrix scaled_;  // D^-1 A (same graph)
-  Vector b_scaled_, x_initial_;
+  Distribution distribution_;
+  std::unique_ptr<GhostExchange> ghosts_;    // only when distributed
+  CrsPattern block_pattern_;                 // the owned columns of each row (the pattern itself on one rank)
+  CrsMatrix block_;                          // D^-1 A on block_pattern_, what ILU factorises
+  Vector b_scaled_, x_initial_, x_columns_;  // x_columns_: x with its ghost entries
   std::unique_ptr<detail::BicgstabWorkspace> work_;
   std::map<int, std::unique_ptr<IluFactors>> factors_;
 };

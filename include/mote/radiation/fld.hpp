@@ -25,6 +25,12 @@
 // mirror the active ones, as at the mid-plane) or open (ghost cells hold the
 // external field E_ext^b = f^b(T_ext) 4 sigma T_ext^4 / c).
 //
+// Under MPI (radial slabs) the system is linalg's distributed one: each rank
+// assembles its cells' rows, with the E^b of the neighbouring slab's first
+// cells as ghost columns (their values, the diffusion coefficients and E^n
+// come through the radial halo), and the open-boundary power is summed over
+// the ranks.
+//
 // The bands cover all wavelengths: the first band extends to lambda = 0 and
 // the last to infinity, so that sum_b f^b = 1.
 #pragma once
@@ -37,6 +43,7 @@
 #include "mote/linalg/solver.hpp"
 #include "mote/mesh/diffusion_stencil.hpp"
 #include "mote/mesh/grid.hpp"
+#include "mote/mesh/halo.hpp"
 
 namespace mote::radiation {
 
@@ -152,6 +159,7 @@ class FldSolver {
   void write_back(FldState& state) const;
 
   const mesh::Grid& grid_;
+  mesh::RadialHalo halo_;  // E^b and D^b of the neighbouring slabs' first cells
   FldSettings settings_;
   RadiationConstants constants_;
   int nb_;
