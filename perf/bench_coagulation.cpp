@@ -63,6 +63,7 @@ void BM_CoagulationRates(benchmark::State& state) {
   const int cells = static_cast<int>(state.range(0)), species = static_cast<int>(state.range(1));
   Setup setup(cells, species, 1.0);
   setup.s.product_split = state.range(2) ? "quadratic" : "two-bin";
+  setup.s.team_size = static_cast<int>(state.range(3));
   coag::Coagulation solver(setup.grid, setup.s, cells);
   const auto kernel = coag::make_kernel(setup.s, setup.grid, setup.gas);
   mote::RealView2 dydt("dydt", cells, species);
@@ -81,6 +82,7 @@ void BM_CoagulationStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0)), species = static_cast<int>(state.range(1));
   const int cells = n * n;
   Setup setup(cells, species, 1.0);
+  setup.s.team_size = static_cast<int>(state.range(2));
   coag::Coagulation solver(setup.grid, setup.s, cells);
   const auto kernel = coag::make_kernel(setup.s, setup.grid, setup.gas);
   const Real dt = 100 * cgs::year;
@@ -91,6 +93,7 @@ void BM_CoagulationStep(benchmark::State& state) {
     Kokkos::fence();
   }
   state.counters["cells"] = cells;
+  state.counters["team_size"] = setup.s.team_size;
   state.counters["substeps_per_cell_per_call"] = double(sub) / (double(state.iterations()) * cells);
   state.counters["pair_rhs_per_s"] =
       benchmark::Counter(double(sub) * 3 * species * (species + 1) / 2, benchmark::Counter::kIsRate);
@@ -133,13 +136,22 @@ void BM_CoagulationSteadyStateE3(benchmark::State& state) {
 
 }  // namespace
 
-// Arguments: cells, species, product split (0 two-bin, 1 quadratic).
+// Arguments: cells, species, product split (0 two-bin, 1 quadratic), team size (0: the back-end's choice).
 BENCHMARK(BM_CoagulationRates)
-    ->Args({1, 100, 0})
-    ->Args({1, 200, 0})
-    ->Args({256, 100, 0})
-    ->Args({1, 200, 1})
-    ->Args({256, 100, 1})
+    ->Args({1, 100, 0, 0})
+    ->Args({1, 200, 0, 0})
+    ->Args({256, 100, 0, 0})
+    ->Args({1, 200, 1, 0})
+    ->Args({256, 100, 1, 0})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_CoagulationStep)->Args({32, 100})->Args({150, 100})->Unit(benchmark::kMillisecond)->Iterations(1);
+// Arguments: n (n x n cells), species, team size.
+BENCHMARK(BM_CoagulationStep)->Args({32, 100, 0})->Args({150, 100, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
+#if defined(KOKKOS_ENABLE_CUDA)
+// The team size of a GPU's cell teams (issue 17): fixed sizes against Kokkos's choice.
+BENCHMARK(BM_CoagulationRates)->ArgsProduct({{4096}, {100}, {1}, {0, 32, 64, 128, 256}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CoagulationStep)
+    ->ArgsProduct({{150}, {100}, {32, 64, 128, 256}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+#endif
 BENCHMARK(BM_CoagulationSteadyStateE3)->Unit(benchmark::kMillisecond)->Iterations(1);

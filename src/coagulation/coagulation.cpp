@@ -3,6 +3,8 @@
 #include "mote/coagulation/coagulation.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "mote/coagulation/bs32.hpp"
@@ -18,6 +20,16 @@ using TeamPolicy = Kokkos::TeamPolicy<ExecSpace>;
 using Member = TeamPolicy::member_type;
 using Scratch = Kokkos::View<Real*, ExecSpace::scratch_memory_space, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
 constexpr int kBs32Arrays = 7;  // y and the six Bs32Work arrays
+
+/// Team scratch of one cell's BS32 integration: the state arrays and the rates' work arrays.
+std::size_t integrate_scratch_bytes(int species) {
+  return (kBs32Arrays + CellRates::scratch_per_species) * Scratch::shmem_size(species);
+}
+
+/// One team per cell: `team_size` threads, or Kokkos's choice (Kokkos::AUTO) for 0.
+TeamPolicy cell_teams(int count, int team_size) {
+  return team_size > 0 ? TeamPolicy(count, team_size) : TeamPolicy(count, Kokkos::AUTO);
+}
 
 template <class Kernel>
 bool uses_fragmentation(const Kernel& kernel) {
@@ -45,7 +57,19 @@ AnyKernel make_kernel(const CoagulationSettings& s, const MassGrid& grid, const 
 
 Coagulation::Coagulation(const MassGrid& grid, const CoagulationSettings& settings, int cells)
     : grid_(grid), settings_(settings), cells_(cells) {
+  // A GPU holds a team's scratch in its shared memory (about 48 KiB: some 460 species); a host has no such limit.
+  constexpr bool host_backend = Kokkos::SpaceAccessibility<Kokkos::HostSpace, ExecSpace::memory_space>::accessible;
+  const std::size_t scratch = detail::integrate_scratch_bytes(grid_.size());
+  const std::size_t scratch_max = detail::TeamPolicy::scratch_size_max(0);
+  if (!host_backend && scratch > scratch_max)
+    throw std::invalid_argument("coagulation: " + std::to_string(grid_.size()) + " species need " +
+                                std::to_string(scratch) + " bytes of team scratch per cell; the " + ExecSpace::name() +
+                                " back-end holds " + std::to_string(scratch_max));
   batch_ = std::max(1, std::min(cells_, settings_.cells_per_batch));
+  team_size_ = settings_.team_size;
+  if (host_backend && team_size_ > ExecSpace().concurrency())
+    throw std::invalid_argument("coagulation.team_size = " + std::to_string(team_size_) + " exceeds the " +
+                                std::to_string(ExecSpace().concurrency()) + " threads of the host back-end");
   tables_ = build_collision_tables(grid_, settings_.chi_im, settings_.fragment_slope,
                                    product_split_from_name(settings_.product_split));
   k_coag_ = PairCoefficients("coagulation::k_coag", batch_, tables_.pairs);
@@ -64,7 +88,7 @@ void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
   auto pj = tables_.pair_j;
   const int pairs = tables_.pairs;
   Kokkos::parallel_for(
-      "coagulation::pair_kernels", detail::TeamPolicy(count, Kokkos::AUTO), KOKKOS_LAMBDA(const detail::Member& team) {
+      "coagulation::pair_kernels", detail::cell_teams(count, team_size_), KOKKOS_LAMBDA(const detail::Member& team) {
         const int lc = team.league_rank(), c = first + lc;
         Kokkos::parallel_for(Kokkos::TeamThreadRange(team, pairs), [&](int p) {
           const int i = pi(p), j = pj(p);
@@ -81,7 +105,7 @@ void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
 template <class Kernel>
 CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, const Kernel& kernel) {
   const int n = tables_.species;
-  const size_t bytes = (detail::kBs32Arrays + CellRates::scratch_per_species) * detail::Scratch::shmem_size(n);
+  const size_t bytes = detail::integrate_scratch_bytes(n);
   Bs32Options base;
   base.rel_tol = settings_.rel_tol;
   base.max_steps = settings_.max_substeps;
@@ -94,7 +118,7 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
     const int count = std::min(batch_, cells_ - first);
     evaluate_pairs(first, count, kernel);
     const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
-    const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
+    const auto policy = detail::cell_teams(count, team_size_).set_scratch_size(0, Kokkos::PerTeam(bytes));
     Kokkos::parallel_for(
         "coagulation::integrate", policy, KOKKOS_LAMBDA(const detail::Member& team) {
           const int lc = team.league_rank(), c = first + lc;
@@ -159,7 +183,7 @@ void Coagulation::rates_with(const RealView2& density, const Kernel& kernel, con
     const int count = std::min(batch_, cells_ - first);
     evaluate_pairs(first, count, kernel);
     const CellRates rates(tables_, k_coag_, k_frag_, detail::uses_fragmentation(kernel));
-    const auto policy = detail::TeamPolicy(count, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(bytes));
+    const auto policy = detail::cell_teams(count, team_size_).set_scratch_size(0, Kokkos::PerTeam(bytes));
     Kokkos::parallel_for(
         "coagulation::rates", policy, KOKKOS_LAMBDA(const detail::Member& team) {
           const int lc = team.league_rank(), c = first + lc;

@@ -67,6 +67,11 @@ void declare(core::DeckSchema& s) {
       .default_value(1024LL)
       .min(1)
       .doc("Cells whose pair kernels are held in memory at once (memory: 16 N(N+1)/2 bytes per cell).");
+  s.integer("coagulation.team_size")
+      .default_value(0LL)
+      .min(0)
+      .max(1024)
+      .doc("Threads of the team that integrates one cell; 0 chooses per back-end (docs/coagulation.md).");
   s.real("coagulation.a_min")
       .default_value(5e-5)
       .greater_than(0.0)
@@ -101,6 +106,7 @@ CoagulationSettings settings_from_deck(const core::Deck& d) {
   s.abs_tol = d.real("coagulation.abs_tol");
   s.max_substeps = static_cast<int>(d.integer("coagulation.max_substeps"));
   s.cells_per_batch = static_cast<int>(d.integer("coagulation.cells_per_batch"));
+  s.team_size = static_cast<int>(d.integer("coagulation.team_size"));
   s.a_min = d.real("coagulation.a_min");
   s.a_max = d.real("coagulation.a_max");
   s.species = static_cast<int>(d.integer("coagulation.species"));

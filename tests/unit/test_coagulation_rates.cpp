@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mote/coagulation/coagulation.hpp"
 #include "mote/core/units.hpp"
@@ -244,4 +246,69 @@ TEST(CoagulationRates, ConstantKernelSinglePair) {
   const double eps = (mu - m) / (mu - ml);
   EXPECT_NEAR(d(0, k + 3), eps * loss, 1e-12 * loss);
   EXPECT_NEAR(d(0, k + 4), (1 - eps) * loss, 1e-12 * loss);
+}
+
+namespace {
+
+/// Rates of the physical kernel on 5 cells with `team_size` threads per cell's team.
+std::vector<double> physical_rates(int team_size) {
+  coag::CoagulationSettings s;
+  s.species = 60;
+  s.a_min = 1e-5;
+  s.a_max = 10.0;
+  s.vertically_integrated = true;
+  s.team_size = team_size;
+  const auto grid = coag::MassGrid::from_sizes(s.a_min, s.a_max, s.species, s.rho_m);
+  const int cells = 5, n = grid.size();
+  coag::Coagulation solver(grid, s, cells);
+  mote::RealView2 rho("rho", cells, n), dydt("dydt", cells, n);
+  auto h = Kokkos::create_mirror_view(rho);
+  for (int c = 0; c < cells; ++c)
+    for (int k = 0; k < n; ++k) h(c, k) = 1e-2 * std::exp(-0.1 * k) * (1.0 + c);
+  Kokkos::deep_copy(rho, h);
+  solver.rates(rho, coag::make_kernel(s, grid, disc_cells(cells, 20.0)), dydt);
+  auto d = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dydt);
+  std::vector<double> out;
+  for (int c = 0; c < cells; ++c)
+    for (int k = 0; k < n; ++k) out.push_back(d(c, k));
+  return out;
+}
+
+}  // namespace
+
+TEST(CoagulationTeams, TeamSizeDoesNotChangeTheRates) {
+  // Each target bin gathers its pairs in a fixed order whatever the team size:
+  // the rates are the same bits for every size the back-end runs.
+  const bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, mote::ExecSpace::memory_space>::accessible;
+  const std::vector<int> sizes =
+      host ? std::vector<int>{1, mote::ExecSpace().concurrency()} : std::vector<int>{32, 64, 128, 256};
+  const auto reference = physical_rates(0);
+  for (int size : sizes) {
+    const auto rates = physical_rates(size);
+    ASSERT_EQ(rates.size(), reference.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < rates.size(); ++i) differ += rates[i] != reference[i];
+    EXPECT_EQ(differ, 0) << "team size " << size;
+  }
+}
+
+TEST(CoagulationTeams, LimitsOfTheBackEndAreRefusedAtSetUp) {
+  const bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, mote::ExecSpace::memory_space>::accessible;
+  coag::CoagulationSettings s;
+  s.kernel = "constant";
+  if (host) {
+    // A host team has at most as many threads as the back-end.
+    s.team_size = mote::ExecSpace().concurrency() + 1;
+    const auto grid = coag::MassGrid::from_masses(1.0, 1e3, 31);
+    EXPECT_THROW(coag::Coagulation(grid, s, 1), std::invalid_argument);
+  } else {
+    // A GPU team's scratch lives in shared memory: 600 species (57 KB) do not fit.
+    const auto grid = coag::MassGrid::from_masses(1.0, 1e30, 600);
+    try {
+      coag::Coagulation solver(grid, s, 1);
+      ADD_FAILURE() << "600 species were accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("team scratch"), std::string::npos) << e.what();
+    }
+  }
 }

@@ -69,7 +69,7 @@ class Coagulation {
  private:
   MassGrid grid_;
   CoagulationSettings settings_;
-  int cells_ = 0, batch_ = 0;
+  int cells_ = 0, batch_ = 0, team_size_ = 0;
   CollisionTables tables_;
   PairCoefficients k_coag_, k_frag_;
   RealView1 next_substep_;

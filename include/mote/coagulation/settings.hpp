@@ -24,6 +24,7 @@ struct CoagulationSettings {
   Real abs_tol = 1e-10;                     // BS32 absolute tolerance, times the cell's total dust density
   int max_substeps = 1000000;               // per cell and call
   int cells_per_batch = 1024;               // cells whose pair kernels are held at once
+  int team_size = 0;                        // threads per cell's team; 0: chosen per back-end
   Real a_min = 5e-5, a_max = 0.1;           // grain sizes of the first and last species (cm)
   int species = 200;
   Real rho_m = 1.6;  // intrinsic grain density (g/cm^3)
