@@ -36,6 +36,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.numerics import trapezoid  # noqa: E402
 from mote.verdict import Verdict  # noqa: E402
 
 AU = 1.495978707e13
@@ -107,7 +108,7 @@ def planck_emission(lam_table, k_abs, T):
     """integral k_abs B_lambda(T) dlambda per species (log-log interpolation on a fine grid)."""
     lam = np.logspace(np.log10(lam_table[0]), np.log10(lam_table[-1]), 2000)
     k = np.exp([np.interp(np.log(lam), np.log(lam_table), np.log(ks)) for ks in k_abs])
-    return np.trapz(k * planck_lambda(lam, T), lam, axis=1)
+    return trapezoid(k * planck_lambda(lam, T), lam, axis=1)
 
 
 def thin_temperature(rho, heating, lam, k_abs):

@@ -72,6 +72,7 @@ from scipy.linalg import solve_banded
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import mote  # noqa: E402
+from mote.numerics import trapezoid  # noqa: E402
 
 # HPL18 Table 2, L2 density errors (column 2) for the sizes of Table 1.
 TABLE2 = [4.93e-3, 4.90e-3, 4.81e-3, 5.10e-3, 5.06e-3, 6.44e-2, 1.24e-2, 3.44e-2, 7.89e-2, 9.43e-2]
@@ -110,7 +111,7 @@ class Column:
         shape = np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + zq**2)))
         zl = np.linspace(0.0, st.get("zmax", 3.0) * self.H, 20001)
         gauss = self.rho0 * np.exp(-zl**2 / (2 * self.H**2))
-        self.rhog_mid = np.trapz(gauss, zl) / np.trapz(shape, zq) * (1 - self.eps.sum())
+        self.rhog_mid = trapezoid(gauss, zl) / trapezoid(shape, zq) * (1 - self.eps.sum())
 
     def rho_gas(self, z):
         return self.rhog_mid * np.exp(-self.gm / self.cs**2 * (1 / self.r0 - 1 / np.sqrt(self.r0**2 + z**2)))
@@ -251,9 +252,9 @@ def reference_agreement(col, t, nz=6001):
         zg, (rg,) = col.solve_1d(j, [t])
         zc, rc = col.solve_1d_cn(j, t)
         grid, cn = np.interp(zs, zg, rg), np.interp(zs, zc, rc)
-        m0 = np.trapz(col.eps[j] / (1 - col.eps.sum()) * col.rho_gas(zs), zs)
+        m0 = trapezoid(col.eps[j] / (1 - col.eps.sum()) * col.rho_gas(zs), zs)
         rows.append([np.sqrt(np.mean((f - exact) ** 2)) / exact.max() for f in (grid, cn)]
-                    + [np.trapz(f, zs) / m0 for f in (exact, grid, cn)])
+                    + [trapezoid(f, zs) / m0 for f in (exact, grid, cn)])
     return np.array(rows)
 
 

@@ -18,7 +18,7 @@ overrides = [a for a in rest if not a.startswith("--")]
 shutil.rmtree(work, ignore_errors=True)
 run([exe, deck, f"output.dir={work}", "run.progress_interval=0", *overrides])
 png = os.path.join(work, "drift.png" if "--drift" in flags else "settling.png")
-c = run(["/usr/bin/python3", os.path.join(ROOT, "problems", "disc_settling", "check.py"), work, "--plot", png, *flags],
+c = run([sys.executable, os.path.join(ROOT, "problems", "disc_settling", "check.py"), work, "--plot", png, *flags],
         expect=None)
 print(c.stdout.strip())
 if c.stderr.strip():

@@ -30,14 +30,14 @@ for n, steps in ((24, 8), (48, 32), (96, 128)):
     run([exe, os.path.join(pdir, "fld_diffusion.toml"), f"output.dir={out}", f"grid.nr={n}", f"grid.ntheta={n}",
          f"fld_test.dt={t_end / steps!r}"])
     runs.append(out)
-c = run(["/usr/bin/python3", check_py, "diffusion", *runs], expect=None)
+c = run([sys.executable, check_py, "diffusion", *runs], expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0 and "3 passed, 0 failed" in c.stdout, "D3: check.py diffusion passes (orders, error)")
 
 deck = os.path.join(pdir, "fld_equilibrium.toml")
 full = os.path.join(work, "equilibrium")
 run([exe, deck, f"output.dir={full}"])
-c = run(["/usr/bin/python3", check_py, "equilibrium", full], expect=None)
+c = run([sys.executable, check_py, "equilibrium", full], expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0 and "3 passed, 0 failed" in c.stdout, "D4: check.py equilibrium passes")
 

@@ -38,7 +38,7 @@ hist = mote.read_history(os.path.join(work, "history.txt"))
 drift = abs(hist["mass"][-1] - hist["mass"][0]) / hist["mass"][0]
 checks.check(drift < 1e-13, f"mass conserved: relative drift {drift:.2e} < 1e-13")
 png = os.path.join(work, "pulse.png")
-c = run(["/usr/bin/python3", os.path.join(pdir, "check.py"), work, "--max-error", "1e-3", "--plot", png], expect=None)
+c = run([sys.executable, os.path.join(pdir, "check.py"), work, "--max-error", "1e-3", "--plot", png], expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0, "check.py: L2_rel within 1e-3")
 checks.check(os.path.getsize(png) > 10000, "check.py wrote the PNG")

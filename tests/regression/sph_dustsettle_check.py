@@ -28,7 +28,7 @@ options = [a for a in rest if a not in overrides]
 shutil.rmtree(work, ignore_errors=True)
 run([exe, deck, f"output.dir={work}", "run.progress_interval=0", *overrides])
 png = os.path.join(work, "settling.png")
-c = run(["/usr/bin/python3", os.path.join(ROOT, "problems", "sph_dustsettle", "check.py"), work, "--plot", png,
+c = run([sys.executable, os.path.join(ROOT, "problems", "sph_dustsettle", "check.py"), work, "--plot", png,
          *options], expect=None)
 print(c.stdout.strip())
 if c.stderr.strip():

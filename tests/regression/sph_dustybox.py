@@ -23,7 +23,7 @@ shutil.rmtree(work, ignore_errors=True)
 pdir = os.path.join(ROOT, "problems", "sph_dustybox")
 deck = os.path.join(pdir, "sph_dustybox.toml")
 checks = Checks()
-check = ["/usr/bin/python3", os.path.join(pdir, "check.py")]
+check = [sys.executable, os.path.join(pdir, "check.py")]
 for eps in (0.01, 1.0):
     for ts in (0.1, 1e-3, 1e-5):
         out = os.path.join(work, f"eps{eps:g}_ts{ts:g}")

@@ -49,7 +49,7 @@ for n in ns:
 if full:
     out = os.path.join(work, "full")
     run([exe, os.path.join(pdir, "sph_dustydiffuse_full.toml"), f"output.dir={out}"])
-    c = run(["/usr/bin/python3", os.path.join(pdir, "check.py"), out, "--times", "0.1", "0.3", "1", "--plot",
+    c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--times", "0.1", "0.3", "1", "--plot",
              out + ".png"], expect=None)
     print(c.stdout.strip())
     checks.check(c.returncode == 0, "close-packed 50 x 58 x 60: L2_abs(eps, r < 0.2) <= 5e-4 at t = 0.1, 0.3, 1")

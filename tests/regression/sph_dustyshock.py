@@ -20,7 +20,7 @@ checks = Checks()
 for disc in ("second_derivatives", "first_derivatives"):
     out = os.path.join(work, disc)
     run([exe, os.path.join(pdir, "sph_dustyshock.toml"), f"output.dir={out}", f'dust.discretisation="{disc}"'])
-    c = run(["/usr/bin/python3", os.path.join(pdir, "check.py"), out, "--plot", out + ".png"], expect=None)
+    c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--plot", out + ".png"], expect=None)
     print(c.stdout.strip())
     checks.check(c.returncode == 0, f"dustyshock, {disc}: mean |rho - rho_exact| <= 1e-2")
     check_conservation(checks, out, 1e-3)

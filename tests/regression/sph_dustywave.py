@@ -24,7 +24,7 @@ for K in (100, 1000):
         out = os.path.join(work, f"K{K}_{disc}")
         run([exe, os.path.join(pdir, "sph_dustywave.toml"), f"output.dir={out}", f"dust.K=[{K}.0]",
              f'dust.discretisation="{disc}"'])
-        c = run(["/usr/bin/python3", os.path.join(pdir, "check.py"), out, "--plot", out + ".png"], expect=None)
+        c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--plot", out + ".png"], expect=None)
         print(c.stdout.strip())
         checks.check(c.returncode == 0, f"dustywave K = {K}, {disc}: velocities against the two-fluid solution")
         check_conservation(checks, out, 1e-6, momentum_tol=2e-12)  # round-off of O(c_s) forces (check.py)

@@ -30,7 +30,7 @@ with h5py.File(last) as f:
                  f"snapshot particle fields: {sorted(names)}")
 xmf = open(last[:-3] + ".xmf").read()
 checks.check("Polyvertex" in xmf and "particles/density" in xmf, "XDMF point cloud descriptor")
-c = run(["/usr/bin/python3", os.path.join(pdir, "check.py"), out, "--max-error", "1e-2"], expect=None)
+c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--max-error", "1e-2"], expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0, "Sod: mean |rho - rho_exact| <= 1e-2")
 hist = mote.read_history(os.path.join(out, "history.txt"))

@@ -8,8 +8,11 @@
 // <= 10 x tolerance; iteration counts are printed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "dense_reference.hpp"
@@ -407,7 +410,11 @@ TEST(CrsPattern, RejectsRowsWithoutDiagonalOrUnsorted) {
 /// bit (both on spiluk's symbolic pattern, rows sorted), at fill levels 0-2 of
 /// the non-symmetric convection-diffusion matrix, and its level schedule
 /// puts every row after the rows it depends on.
-TEST(IluFactors, NumericPhaseIsSpiluksBitForBit) {
+// Bit for bit on host back-ends. On a GPU Kokkos Kernels runs its team algorithm,
+// whose multiply-adds nvcc contracts to FMAs in other places than in mote's phase:
+// the same entries, values within a few rounding errors.
+TEST(IluFactors, NumericPhaseIsSpiluksBitForBitOnHostsAndToRoundingOnGpus) {
+  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, ExecSpace::memory_space>::accessible;
 #if defined(KOKKOSKERNELS_VERSION) && KOKKOSKERNELS_VERSION >= 40000
   namespace kk = KokkosSparse;
   using KokkosSparse::Experimental::SPILUKAlgorithm;
@@ -442,19 +449,32 @@ TEST(IluFactors, NumericPhaseIsSpiluksBitForBit) {
       auto r_map = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), map);
       auto r_e = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), e);
       auto r_v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
-      int differ = 0;
+      int missing = 0, differ = 0;
+      double worst = 0.0;
       for (int row = 0; row < pattern.n_rows; ++row) {
         EXPECT_EQ(m_map(row + 1), r_map(row + 1));
         for (Offset k = r_map(row); k < r_map(row + 1); ++k) {
           Offset j = m_map(row);
           while (j < m_map(row + 1) && m_e(j) != r_e(k)) ++j;
-          if (j == m_map(row + 1) || m_v(j) != r_v(k)) ++differ;
+          if (j == m_map(row + 1)) {
+            ++missing;
+            continue;
+          }
+          differ += m_v(j) != r_v(k);
+          worst = std::max(worst, std::fabs(m_v(j) - r_v(k)) / std::max(std::fabs(r_v(k)), 1e-300));
         }
       }
-      return differ;
+      std::printf("fill level %d: %d missing entries, %d values differ, largest relative difference %.3e\n", fill,
+                  missing, differ, worst);
+      EXPECT_EQ(missing, 0);
+      if (host)
+        EXPECT_EQ(differ, 0);
+      else
+        EXPECT_LE(worst, 1e-13);
     };
-    EXPECT_EQ(compare(ours.lower(), L_map, L_e, L_v), 0) << "L at fill level " << fill;
-    EXPECT_EQ(compare(ours.upper(), U_map, U_e, U_v), 0) << "U at fill level " << fill;
+    SCOPED_TRACE("fill level " + std::to_string(fill));
+    compare(ours.lower(), L_map, L_e, L_v);
+    compare(ours.upper(), U_map, U_e, U_v);
     EXPECT_GT(ours.levels(), n);  // a 2D sweep: at least one level per grid line
   }
 }
