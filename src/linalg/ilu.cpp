@@ -24,14 +24,17 @@ namespace triangular = KokkosSparse;
 namespace triangular = KokkosSparse::Experimental;
 #endif
 
-IluFactors::IluFactors(const std::string& name, const CrsPattern& pattern, int fill_level)
+IluFactors::IluFactors(const std::string& name, const CrsPattern& pattern, int fill_level, int sweeps)
     : fill_level_(fill_level),
+      sweeps_(sweeps),
       A_row_map_(pattern.row_map),
       L_row_map_(name + "::L_row_map", pattern.n_rows + 1),
       U_row_map_(name + "::U_row_map", pattern.n_rows + 1),
       A_entries_(pattern.entries),
       between_(name + "::between", pattern.n_rows) {
   if (fill_level < 0) throw std::invalid_argument(name + ": ILU fill level must be >= 0");
+  if (sweeps < 0) throw std::invalid_argument(name + ": triangular sweeps must be >= 0");
+  if (sweeps > 0) sweep_ = Vector(name + "::sweep", pattern.n_rows);
   // spiluk needs storage for the fill before it knows it: start from
   // (k + 1) nnz(A) and grow until the symbolic phase fits.
   int estimate = (fill_level + 1) * pattern.nnz() + pattern.n_rows;
@@ -59,6 +62,8 @@ void IluFactors::symbolic(const CrsPattern& pattern, int estimate) {
   Kokkos::resize(L_entries_, ilu_handle_.get_spiluk_handle()->get_nnzL());
   Kokkos::resize(U_entries_, ilu_handle_.get_spiluk_handle()->get_nnzU());
   sort_rows_and_find_levels();
+  ilu_handle_.destroy_spiluk_handle();  // its work arrays: mote's numeric phase needs only the pattern
+  if (sweeps_ > 0) return;
   lower_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, true);
   upper_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, false);
   triangular::sptrsv_symbolic(&lower_handle_, L_row_map_, L_entries_);
@@ -197,8 +202,59 @@ int IluFactors::factorise(const CrsMatrix& A) {
 }
 
 void IluFactors::apply(const Vector& y, const Vector& z) {
+  if (sweeps_ > 0) return apply_sweeps(y, z);
   triangular::sptrsv_solve(&lower_handle_, L_row_map_, L_entries_, L_values_, y, between_);
   triangular::sptrsv_solve(&upper_handle_, U_row_map_, U_entries_, U_values_, between_, z);
+}
+
+namespace detail {
+
+/// w_out = y - (L - I) w_in: one Jacobi sweep of the unit lower factor (diagonal last in each row).
+void lower_sweep(const IluFactors::Factor& L, const Vector& y, const Vector& w_in, const Vector& w_out) {
+  const auto rm = L.row_map;
+  const auto e = L.entries;
+  const auto v = L.values;
+  par_for(
+      "linalg::ilu_lower_sweep", 0, static_cast<int>(y.extent(0)), KOKKOS_LAMBDA(int row) {
+        Real s = y(row);
+        for (Offset k = rm(row); k + 1 < rm(row + 1); ++k) s -= v(k) * w_in(e(k));
+        w_out(row) = s;
+      });
+}
+
+/// z_out = D^-1 (w - (U - D) z_in): one Jacobi sweep of the upper factor (diagonal first in each row);
+/// the First sweep starts from z_in = 0: z_out = D^-1 w.
+template <bool First>
+void upper_sweep(const IluFactors::Factor& U, const Vector& w, const Vector& z_in, const Vector& z_out) {
+  const auto rm = U.row_map;
+  const auto e = U.entries;
+  const auto v = U.values;
+  par_for(
+      "linalg::ilu_upper_sweep", 0, static_cast<int>(w.extent(0)), KOKKOS_LAMBDA(int row) {
+        Real s = w(row);
+        if (!First)  // a constant: the first sweep compiles without the loop
+          for (Offset k = rm(row) + 1; k < rm(row + 1); ++k) s -= v(k) * z_in(e(k));
+        z_out(row) = s / v(rm(row));
+      });
+}
+
+}  // namespace detail
+
+void IluFactors::apply_sweeps(const Vector& y, const Vector& z) {
+  // Iterates alternate between two vectors so that the last one lands in `between_` (L) and in `z` (U).
+  Vector in = y;
+  for (int k = 0; k < sweeps_; ++k) {
+    const Vector out = (sweeps_ - 1 - k) % 2 == 0 ? between_ : sweep_;
+    detail::lower_sweep(lower(), y, in, out);
+    in = out;
+  }
+  in = (sweeps_ % 2 == 0) ? z : sweep_;
+  detail::upper_sweep<true>(upper(), between_, in, in);
+  for (int k = 0; k < sweeps_; ++k) {
+    const Vector out = (sweeps_ - 1 - k) % 2 == 0 ? z : sweep_;
+    detail::upper_sweep<false>(upper(), between_, in, out);
+    in = out;
+  }
 }
 
 }  // namespace mote::linalg

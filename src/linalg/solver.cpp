@@ -31,6 +31,8 @@ void SolverSettings::validate() const {
                                 std::to_string(relative_floor));
   if (max_fill_level < 0)
     throw std::invalid_argument("max_fill_level must be >= 0, got " + std::to_string(max_fill_level));
+  if (triangular_sweeps < 0)
+    throw std::invalid_argument("triangular_sweeps must be >= 0, got " + std::to_string(triangular_sweeps));
 }
 
 std::vector<Preconditioning> SolverSettings::ladder() const {
@@ -361,7 +363,8 @@ LinearSolver::~LinearSolver() = default;
 IluFactors* LinearSolver::factors_for(int fill_level) {
   auto& slot = factors_[fill_level];
   if (!slot)
-    slot = std::make_unique<IluFactors>(name_ + "::ilu" + std::to_string(fill_level), block_pattern_, fill_level);
+    slot = std::make_unique<IluFactors>(name_ + "::ilu" + std::to_string(fill_level), block_pattern_, fill_level,
+                                        settings_.triangular_sweeps);
   return slot.get();
 }
 

@@ -359,6 +359,9 @@ TEST(LinearSolver, SettingsAreValidated) {
   SolverSettings s;
   s.max_iterations = 0;
   EXPECT_THROW(s.validate(), std::invalid_argument);
+  SolverSettings swept;
+  swept.triangular_sweeps = -1;
+  EXPECT_THROW(swept.validate(), std::invalid_argument);
 }
 
 TEST(LinearSolver, LadderOrder) {
@@ -476,5 +479,67 @@ TEST(IluFactors, NumericPhaseIsSpiluksBitForBitOnHostsAndToRoundingOnGpus) {
     compare(ours.lower(), L_map, L_e, L_v);
     compare(ours.upper(), U_map, U_e, U_v);
     EXPECT_GT(ours.levels(), n);  // a 2D sweep: at least one level per grid line
+  }
+}
+
+// Jacobi-swept ILU application (ilu.hpp; Anzt, Chow & Dongarra 2015): the
+// truncated Neumann series of each factor, exact once the sweeps cover the
+// longest dependency chain of L and U, an approximation before that.
+TEST(IluFactors, SweepsReachTheExactSolvesAtTheLongestChain) {
+  const int n = 12;
+  const auto pattern = five_point_pattern(n);
+  LinearSolver solver("test::ilu_sweeps", pattern, SolverSettings{});
+  convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+  const auto y = from_host(rhs(n * n));
+  for (int fill = 0; fill <= 1; ++fill) {
+    linalg::IluFactors exact("test::exact", pattern, fill);
+    ASSERT_EQ(exact.factorise(solver.matrix()), -1);
+    const linalg::Vector z_exact("z_exact", n * n);
+    exact.apply(y, z_exact);
+    const auto reference = to_host(z_exact);
+    const auto swept = [&](int sweeps) {
+      linalg::IluFactors factors("test::swept", pattern, fill, sweeps);
+      EXPECT_EQ(factors.factorise(solver.matrix()), -1);
+      const linalg::Vector z("z", n * n);
+      factors.apply(y, z);
+      return relative_error(to_host(z), reference);
+    };
+    const int chain = exact.levels() - 1;
+    const double few = swept(2), most = swept(chain - 1), all = swept(chain), more = swept(chain + 1);
+    std::printf(
+        "ILU(%d), %d levels: relative difference from the exact solves after 2, %d, %d, %d sweeps: %.3e %.3e "
+        "%.3e %.3e\n",
+        fill, exact.levels(), chain - 1, chain, chain + 1, few, most, all, more);
+    EXPECT_GT(few, 1e-3);  // an approximation, not the exact solve
+    EXPECT_LE(all, 1e-13);
+    EXPECT_LE(more, 1e-13);
+  }
+}
+
+TEST(LinearSolver, JacobiSweptIluConvergesToTheDirectSolve) {
+  const int n = 20;
+  const double tolerance = 1e-8;
+  const auto b = rhs(n * n);
+  int exact_iterations = 0;
+  for (int sweeps : {0, 1, 3}) {
+    SolverSettings settings;
+    settings.tolerance = tolerance;
+    settings.preconditioning = {0};
+    settings.fallback = false;
+    settings.triangular_sweeps = sweeps;
+    LinearSolver solver("test::cd_sweeps", five_point_pattern(n), settings);
+    convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+    const auto A = to_dense(solver.matrix());
+    const linalg::Vector x("x", n * n);
+    const auto report = solver.solve(from_host(b), x);
+    const auto xh = to_host(x);
+    const double error = relative_error(xh, dense_solve(A, b));
+    std::printf("ILU(0) with %d sweeps: %d iterations, residual %.3e, error %.3e\n", sweeps, report.last().iterations,
+                max_fractional_residual(A, xh, b), error);
+    ASSERT_TRUE(report.converged);
+    EXPECT_LE(max_fractional_residual(A, xh, b), tolerance);
+    EXPECT_LE(error, 10.0 * tolerance);
+    if (sweeps == 0) exact_iterations = report.last().iterations;
+    if (sweeps == 3) EXPECT_LE(report.last().iterations, 3 * exact_iterations);
   }
 }

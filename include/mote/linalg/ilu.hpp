@@ -7,7 +7,13 @@
 // same factors bit for bit) but without its work array of (widest level) x
 // (rows) indices, 4.8 GB for RBO24's 150 x 240 x 20 FLD system in Kokkos
 // Kernels 3.4. The factors are applied as z = U^-1 L^-1 y with two sptrsv
-// triangular solves.
+// triangular solves, level-scheduled (one kernel per level: on a GPU the
+// launches of a few hundred levels per solve dominate), or with m Jacobi
+// sweeps per factor (Chow & Patel 2015; Anzt, Chow & Dongarra 2015): w = y,
+// then m times w <- y - (L - I) w, and z = D^-1 w, then m times
+// z <- D^-1 (w - (U - D) z): 2m + 1 row-parallel kernels, the truncated
+// Neumann series of each factor, exact once m reaches the factor's longest
+// dependency chain (levels - 1). A fixed m is a fixed linear preconditioner.
 #pragma once
 
 #include <KokkosKernels_Handle.hpp>
@@ -23,8 +29,10 @@ using KernelHandle =
 
 class IluFactors {
  public:
-  /// Symbolic phase: the fill pattern of L and U for level `fill_level`.
-  IluFactors(const std::string& name, const CrsPattern& pattern, int fill_level);
+  /// Symbolic phase: the fill pattern of L and U for level `fill_level`; the
+  /// factors are applied by exact triangular solves (`sweeps` = 0) or by
+  /// `sweeps` Jacobi sweeps per factor.
+  IluFactors(const std::string& name, const CrsPattern& pattern, int fill_level, int sweeps = 0);
   ~IluFactors();
   IluFactors(const IluFactors&) = delete;
   IluFactors& operator=(const IluFactors&) = delete;
@@ -36,6 +44,7 @@ class IluFactors {
   void apply(const Vector& y, const Vector& z);
 
   int fill_level() const { return fill_level_; }
+  int sweeps() const { return sweeps_; }
   int nnz_lower() const { return static_cast<int>(L_entries_.extent(0)); }
   int nnz_upper() const { return static_cast<int>(U_entries_.extent(0)); }
   /// The factors: L unit lower triangular (diagonal last in each row), U upper
@@ -53,8 +62,9 @@ class IluFactors {
  private:
   void symbolic(const CrsPattern& pattern, int estimate);
   void sort_rows_and_find_levels();
+  void apply_sweeps(const Vector& y, const Vector& z);
 
-  int fill_level_;
+  int fill_level_, sweeps_;
   KernelHandle ilu_handle_, lower_handle_, upper_handle_;
   RowMap A_row_map_, L_row_map_, U_row_map_;
   Entries A_entries_, L_entries_, U_entries_;
@@ -62,6 +72,7 @@ class IluFactors {
   std::vector<int> level_ptr_;  // host: rows of level l are level_rows_(level_ptr_[l] .. level_ptr_[l + 1] - 1)
   IntView1 level_rows_;
   Vector between_;  // L^-1 y
+  Vector sweep_;    // the other half of each sweep's pair of iterates (sweeps > 0)
 };
 
 }  // namespace mote::linalg
