@@ -17,13 +17,12 @@
 // pairs/s (pairs inside the kernel support, counted from both sides, per
 // step), bytes/particle (particle data + neighbour list).
 //   bench_sph --benchmark_out=sph.json --benchmark_out_format=json
-#include <benchmark/benchmark.h>
-
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <random>
 
+#include "bench_main.hpp"
 #include "mote/core/units.hpp"
 #include "mote/setups/lattice.hpp"
 #include "mote/setups/settling_column.hpp"
@@ -239,14 +238,3 @@ BENCHMARK(BM_SphStepColumn3D)->Unit(benchmark::kMillisecond)->Iterations(49);
 BENCHMARK(BM_SphPhasesColumn3D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  Kokkos::initialize(argc, argv);
-  {
-    benchmark::Initialize(&argc, argv);
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-  }
-  Kokkos::finalize();
-  return 0;
-}
