@@ -44,7 +44,6 @@ class IluFactors {
   void apply(const Vector& y, const Vector& z);
 
   int fill_level() const { return fill_level_; }
-  int sweeps() const { return sweeps_; }
   int nnz_lower() const { return static_cast<int>(L_entries_.extent(0)); }
   int nnz_upper() const { return static_cast<int>(U_entries_.extent(0)); }
   /// The factors: L unit lower triangular (diagonal last in each row), U upper
