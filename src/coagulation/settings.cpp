@@ -70,8 +70,10 @@ void declare(core::DeckSchema& s) {
   s.integer("coagulation.team_size")
       .default_value(0LL)
       .min(0)
-      .max(1024)
-      .doc("Threads of the team that integrates one cell; 0 chooses per back-end (docs/coagulation.md).");
+      .max(256)
+      .doc(
+          "Threads of the team that integrates one cell (at most 256, the largest measured on a GPU); 0 chooses per "
+          "back-end (docs/coagulation.md).");
   s.real("coagulation.a_min")
       .default_value(5e-5)
       .greater_than(0.0)
