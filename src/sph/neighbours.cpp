@@ -71,15 +71,17 @@ KOKKOS_INLINE_FUNCTION int ifloor(Real v) {
   return i > v ? i - 1 : i;
 }
 
-/// Calls f(b, image, shift) for every particle image in the cells that intersect
-/// the ball of radius `search` around xa. In a periodic direction the cells
-/// are visited with their image shift (-2 .. +2 box lengths), so a particle
-/// (also a itself) can appear with several images when the search radius
-/// exceeds half the box. Along x the cells of a row that meet the ball have
-/// consecutive keys, so their particles are one range of cell_particles per
-/// image (no per-cell work there); shift[d] = Box::image_shift(image, d).
+/// Calls f(begin, end, image, shift) for every range [begin, end) of
+/// cell_particles whose cells intersect the ball of radius `search` around xa.
+/// In a periodic direction the cells are visited with their image shift (-2 ..
+/// +2 box lengths), so a particle (also a itself) can appear with several
+/// images when the search radius exceeds half the box. Along x the cells of a
+/// row that meet the ball have consecutive keys, so their particles are one
+/// range per image (no per-cell work there); shift[d] =
+/// Box::image_shift(image, d). The caller loops over a range with its own
+/// local state, which the compiler keeps in registers.
 template <int Dim, class F>
-KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const Real* xa, Real search, F&& f) {
+KOKKOS_INLINE_FUNCTION void visit_ranges(const CellGrid& g, const Box& box, const Real* xa, Real search, F&& f) {
   int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   Real rel[3] = {0, 0, 0};  // xa relative to the grid origin
   for (int d = 0; d < Dim; ++d) {
@@ -131,13 +133,100 @@ KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const
         const int sh[3] = {sh0, sh1, sh2};
         Real shift[3] = {0, 0, 0};
         for (int d = 0; d < Dim; ++d) shift[d] = sh[d] * (box.hi[d] - box.lo[d]);  // Box::image_shift
-        const int end = g.cell_start(row + e0 - sh0 * g.nc[0] + 1);
-        for (int s = g.cell_start(row + a0 - sh0 * g.nc[0]); s < end; ++s) f(g.cell_particles(s), code, shift);
+        f(g.cell_start(row + a0 - sh0 * g.nc[0]), g.cell_start(row + e0 - sh0 * g.nc[0] + 1), code,
+          static_cast<const Real*>(shift));
         a0 = e0 + 1;
       }
     }
   }
 }
+
+/// Calls f(b, image, shift) for every particle image in the ranges of
+/// visit_ranges (the exact count-then-fill path, run on first builds only).
+template <int Dim, class F>
+KOKKOS_INLINE_FUNCTION void visit_cells(const CellGrid& g, const Box& box, const Real* xa, Real search, F&& f) {
+  visit_ranges<Dim>(g, box, xa, search, [&](int begin, int end, int code, const Real* shift) {
+    for (int s = begin; s < end; ++s) f(g.cell_particles(s), code, shift);
+  });
+}
+
+/// Stride of the packed candidate records: x, y, z and the squared search
+/// radius (R h (1 + skin) + delta)^2 of each particle, in cell order.
+constexpr int kPack = 4;
+
+/// The candidate loop of the single-traversal build over one range of
+/// cell_particles: the entries of a go to its slack segment [begin, begin +
+/// cap), reverse entries (pairs that b's own, smaller, search misses) to the
+/// back of b's. The candidates are read from packed records in cell order (one
+/// stream). Branch-free on the accept test (about half the candidates pass):
+/// every candidate is written to the next free slot, which a hit keeps; at the
+/// cap the last slot is reused and the overflow test redoes the build.
+/// Everything the loop reads is copied into locals first: its byte stores may
+/// alias any memory, so a value behind a pointer would be reloaded each time.
+/// Ranges of the particles' own cells (no periodic image, the common case)
+/// skip the shift; the separation is Box::separation's (x_a - x_b) - shift.
+template <int Dim>
+struct GatherScan {
+  const Real* pack;  ///< kPack values per slot of cell_particles
+  const int* cell_particles;
+  int* out;
+  unsigned char* out_image;
+  View<int*> nreverse;
+  View<int*> slack;
+
+  KOKKOS_INLINE_FUNCTION int unshifted(int a, int s0, int s1, const Real* xa, Real sa2, int begin, int cap,
+                                       int c) const {
+    const Real zero[3] = {0, 0, 0};
+    return run<false>(a, s0, s1, no_image(), xa, zero, sa2, begin, cap, c);
+  }
+  KOKKOS_INLINE_FUNCTION int shifted(int a, int s0, int s1, int code, const Real* xa, const Real* shift, Real sa2,
+                                     int begin, int cap, int c) const {
+    return run<true>(a, s0, s1, code, xa, shift, sa2, begin, cap, c);
+  }
+
+  template <bool Shifted>
+  KOKKOS_INLINE_FUNCTION int run(int a, int s0, int s1, int code, const Real* xa, const Real* shift, Real sa2,
+                                 int begin, int cap, int c) const {
+    const Real* const rec = pack;
+    const int* const cp = cell_particles;
+    int* const dst = out + begin;
+    unsigned char* const dst_image = out_image + begin;
+    const unsigned char img = static_cast<unsigned char>(code);
+    Real xl[3] = {0, 0, 0}, sh[3] = {0, 0, 0};
+    for (int d = 0; d < Dim; ++d) {
+      xl[d] = xa[d];
+      sh[d] = shift[d];
+    }
+    const int self = Shifted ? -1 : a;  // a meets itself only through an image
+    const int last = cap - 1;
+    const Real reach2 = sa2;
+    for (int s = s0; s < s1; ++s) {
+      const Real* const r = rec + kPack * s;
+      Real r2 = 0.0;
+      for (int d = 0; d < Dim; ++d) {
+        const Real dx = Shifted ? (xl[d] - r[d]) - sh[d] : xl[d] - r[d];
+        r2 += dx * dx;
+      }
+      const int b = cp[s];
+      const bool hit = (r2 < reach2) & (b != self);
+      const int slot = c < last ? c : last;
+      dst[slot] = b;
+      dst_image[slot] = img;
+      c += hit ? 1 : 0;
+      if (hit & (r2 >= r[3])) add_reverse(a, b, code);
+    }
+    return c;
+  }
+
+  KOKKOS_INLINE_FUNCTION void add_reverse(int a, int b, int code) const {
+    const int k = Kokkos::atomic_fetch_add(&nreverse(b), 1);
+    const int e = slack(b + 1) - 1 - k;
+    if (e >= slack(b)) {
+      out[e] = a;
+      out_image[e] = static_cast<unsigned char>(mirror_image(code));
+    }
+  }
+};
 
 /// Returns true when the exact count-then-fill path was taken.
 template <int Dim>
@@ -185,13 +274,15 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     }
     vol *= std::max(xmax[d] - xmin[d], s_min);
   }
-  // Cells of a third of the smallest support across the rows (the search
-  // culls rows outside the ball), but not much smaller than the particle
-  // spacing; along the rows (x) kRowSplit times finer, which costs nothing in
-  // the search (a row segment is one range) and trims the candidates beyond
-  // the ball at the ends of each segment.
-  constexpr int kRowSplit = 4;
-  const Real across = std::max(s_min / 3.0, std::pow(vol / std::max(n, 1), 1.0 / Dim));
+  // Across the rows, cells of two thirds of the smallest support (not smaller
+  // than the particle spacing), so that a search meets about four rows per
+  // direction: a row costs about as much as five candidates (its reach and
+  // range bounds), and these rows measured fastest on the 3D settling column
+  // (perf/README.md). Along the rows (x) kRowSplit times finer, a twelfth of
+  // the support, which costs nothing in the search (a row segment is one
+  // range) and trims the candidates beyond the ball at the ends of each one.
+  constexpr int kRowSplit = 8;
+  const Real across = std::max(s_min / 1.5, std::pow(vol / std::max(n, 1), 1.0 / Dim));
   CellGrid g;
   long long ncell = 1;
   for (int d = 0; d < Dim; ++d) {
@@ -267,6 +358,16 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     Kokkos::deep_copy(total_slack, Kokkos::subview(slack, n));
     const View<int*> sneigh = reuse(nl.work.slack_neigh, total_slack, "sph::neighbour_slack_list", true);
     const View<unsigned char*> simage = reuse(nl.work.slack_image, total_slack, "sph::neighbour_slack_images", true);
+    const RealView1 pack = reuse(nl.work.cell_pack, static_cast<std::size_t>(kPack) * n, "sph::neighbour_cell_pack");
+    par_for(
+        "sph::neighbour_cell_pack", 0, n, KOKKOS_LAMBDA(int slot) {
+          const int i = cell_particles(slot);
+          for (int d = 0; d < Dim; ++d) pack(kPack * slot + d) = x(i, d);
+          for (int d = Dim; d < 3; ++d) pack(kPack * slot + d) = 0.0;
+          const Real si = rfac * h(i) + delta;
+          pack(kPack * slot + 3) = si * si;
+        });
+    const GatherScan<Dim> scan{pack.data(), cell_particles.data(), sneigh.data(), simage.data(), nreverse, slack};
     par_for(
         "sph::neighbour_gather", 0, n, KOKKOS_LAMBDA(int a) {
           Real xa[3] = {0, 0, 0};
@@ -275,35 +376,16 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           const Real sa2 = sa * sa;
           const int begin = slack(a), cap = slack(a + 1) - slack(a);
           int count = 0;
-          visit_cells<Dim>(g, box, xa, sa, [&](int b, int code, const Real* shift) {
-            Real r2 = 0.0;
-            for (int d = 0; d < Dim; ++d) {
-              const Real dx = (xa[d] - x(b, d)) - shift[d];  // Box::separation
-              r2 += dx * dx;
-            }
-            if (r2 < sa2 && (b != a || code != no_image())) {
-              if (count < cap) {
-                sneigh(begin + count) = b;
-                simage(begin + count) = static_cast<unsigned char>(code);
-              }
-              ++count;
-              const Real sb = rfac * h(b) + delta;
-              if (r2 >= sb * sb) {
-                const int k = Kokkos::atomic_fetch_add(&nreverse(b), 1);
-                const int e = slack(b + 1) - 1 - k;
-                if (e >= slack(b)) {
-                  sneigh(e) = a;
-                  simage(e) = static_cast<unsigned char>(mirror_image(code));
-                }
-              }
-            }
+          visit_ranges<Dim>(g, box, xa, sa, [&](int s0, int s1, int code, const Real* shift) {
+            count = code == no_image() ? scan.unshifted(a, s0, s1, xa, sa2, begin, cap, count)
+                                       : scan.shifted(a, s0, s1, code, xa, shift, sa2, begin, cap, count);
           });
           ngather(a) = count;
         });
     int overflow = 0;
     par_reduce(
         "sph::neighbour_overflow", 0, n,
-        KOKKOS_LAMBDA(int a, int& c) { c += ngather(a) + nreverse(a) > slack(a + 1) - slack(a) ? 1 : 0; }, overflow);
+        KOKKOS_LAMBDA(int a, int& c) { c += ngather(a) + nreverse(a) >= slack(a + 1) - slack(a) ? 1 : 0; }, overflow);
     if (overflow == 0) {
       Kokkos::parallel_scan(
           "sph::neighbour_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1),
@@ -319,16 +401,21 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
       const auto im = image;
       par_for(
           "sph::neighbour_compact", 0, n, KOKKOS_LAMBDA(int a) {
-            int pos = offsets(a);
-            for (int k = 0; k < ngather(a); ++k, ++pos) {
-              nb(pos) = sneigh(slack(a) + k);
-              im(pos) = simage(slack(a) + k);
+            // Raw pointers in locals, as in GatherScan (byte stores alias).
+            int* const dst = nb.data() + offsets(a);
+            unsigned char* const dst_image = im.data() + offsets(a);
+            const int* const src = sneigh.data() + slack(a);
+            const unsigned char* const src_image = simage.data() + slack(a);
+            const int gathered = ngather(a), segment = slack(a + 1) - slack(a), reversed = nreverse(a);
+            for (int k = 0; k < gathered; ++k) {
+              dst[k] = src[k];
+              dst_image[k] = src_image[k];
             }
-            // In arrival order (the k-th went to slack(a + 1) - 1 - k): in Serial that is
+            // In arrival order (the k-th went to the segment's end - 1 - k): in Serial that is
             // already the sorted order, which the insertion sort below then only checks.
-            for (int e = slack(a + 1) - 1; e >= slack(a + 1) - nreverse(a); --e, ++pos) {
-              nb(pos) = sneigh(e);
-              im(pos) = simage(e);
+            for (int k = 0; k < reversed; ++k) {
+              dst[gathered + k] = src[segment - 1 - k];
+              dst_image[gathered + k] = src_image[segment - 1 - k];
             }
           });
       built = true;
@@ -406,19 +493,21 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   // Reverse entries arrive in any order on parallel backends: sort them.
   par_for(
       "sph::neighbour_sort_reverse", 0, n, KOKKOS_LAMBDA(int a) {
-        const int b0 = offsets(a) + ngather(a);
-        const int e = offsets(a + 1);
-        for (int i = b0 + 1; i < e; ++i) {
-          const int key = neigh(i);
-          const unsigned char img = image(i);
+        // Raw pointers in locals, as in GatherScan (byte stores alias).
+        int* const nb = neigh.data() + offsets(a) + ngather(a);
+        unsigned char* const im = image.data() + offsets(a) + ngather(a);
+        const int m = offsets(a + 1) - offsets(a) - ngather(a);
+        for (int i = 1; i < m; ++i) {
+          const int key = nb[i];
+          const unsigned char img = im[i];
           int j = i - 1;
-          while (j >= b0 && (neigh(j) > key || (neigh(j) == key && image(j) > img))) {
-            neigh(j + 1) = neigh(j);
-            image(j + 1) = image(j);
+          while (j >= 0 && (nb[j] > key || (nb[j] == key && im[j] > img))) {
+            nb[j + 1] = nb[j];
+            im[j + 1] = im[j];
             --j;
           }
-          neigh(j + 1) = key;
-          image(j + 1) = img;
+          nb[j + 1] = key;
+          im[j + 1] = img;
         }
       });
 

@@ -1,6 +1,9 @@
 // O(N) neighbour finding for SPH. Particles are binned on the device into cells
-// of about the smallest kernel support (a stable counting sort of cell keys);
-// each particle a gathers the candidates within S_a = R h_a (1 + skin) + delta,
+// of about the smallest kernel support (two thirds of it across the x rows,
+// 1/12 along them; a stable counting sort of cell keys); each particle a
+// gathers the candidates within S_a = R h_a (1 + skin) + delta, read from a
+// cell-ordered copy of the positions and search radii, in a loop without
+// branches on the accept test,
 // and the list is made symmetric by adding, for every pair found only from the
 // larger-h side, the reverse entry. The list of a therefore holds every b with
 // |r_ab| < max(S_a, S_b): exactly what the density (gather, h_a) and the
@@ -85,6 +88,7 @@ class NeighbourList {
   struct Work {
     View<int*> keys, ngather, nreverse, rfill, slack, moved_counts, slack_neigh, cell_fill, spare_counts;
     View<unsigned char*> slack_image;
+    RealView1 cell_pack;  ///< x and squared search radius per cell slot
   } work;
 
  private:
