@@ -16,18 +16,16 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, sys.argv[1])
+from mote.verdict import Verdict  # noqa: E402
 
 exe, decks, work = sys.argv[2], sys.argv[3], sys.argv[4]
 os.makedirs(work, exist_ok=True)
-failures = []
-checks = []
+v = Verdict()
 
 
 def check(name, ok, detail):
-    print(("PASS " if ok else "FAIL ") + name + ": " + detail)
-    checks.append(name)
-    if not ok:
-        failures.append(name)
+    v.check(ok, name + ": " + detail)
 
 
 sizes = np.array([1e-5, 1e-3, 1e-1, 1.0])
@@ -71,5 +69,4 @@ run = subprocess.run([sys.executable, "-m", "mote.opacity_tables", "dsharp", npz
                      env=dict(os.environ, PYTHONPATH=sys.argv[1]), capture_output=True, text=True)
 check("bad command line refused", run.returncode == 2 and "usage" in run.stderr, f"exit {run.returncode}")
 
-print(f"{len(checks) - len(failures)} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(v.finish())
