@@ -1,28 +1,28 @@
 // O(N) neighbour finding for SPH. Particles are binned on the device into cells
-// of about the smallest kernel support (two thirds of it across the x rows,
-// 1/12 along them; a stable counting sort of cell keys); each particle a
+// of about the smallest kernel support (two thirds of it across the x rows, a
+// twelfth along them; a stable counting sort of cell keys); each particle a
 // gathers the candidates within S_a = R h_a (1 + skin) + delta, read from a
-// cell-ordered copy of the positions and search radii, in a loop without
-// branches on the accept test,
-// and the list is made symmetric by adding, for every pair found only from the
-// larger-h side, the reverse entry. The list of a therefore holds every b with
-// |r_ab| < max(S_a, S_b): exactly what the density (gather, h_a) and the
-// symmetric force sums of PL15 eq. 25, 27, 34 (h_a and h_b) need, for h
-// varying by any factor between particles. Every entry carries the periodic
-// image of b it refers to (supports up to two box lengths; a particle may
-// then also neighbour its own images). The list stays
+// cell-ordered copy of the positions and search radii in a loop without a
+// branch on the accept test, and the list is made symmetric by adding, for
+// every pair found only from the larger-h side, the reverse entry. The list of
+// a therefore holds every b with |r_ab| < max(S_a, S_b): exactly what the
+// density (gather, h_a) and the symmetric force sums of PL15 eq. 25, 27, 34
+// (h_a and h_b) need, for h varying by any factor between particles. Every
+// entry carries the periodic image of b it refers to (supports up to two box
+// lengths; a particle may then also neighbour its own images). The list stays
 // valid while every particle moved less than delta/2 and no h grew beyond
 // h_build (1 + skin); positions are wrapped into the box only at a rebuild,
 // so that the stored images stay correct in between. A rebuild traverses the
 // cells once, into per-particle segments sized from the previous list, and
 // compacts them; the first build (or an overflowing segment) uses an exact
 // count-then-fill pair of traversals. The list and work arrays are reused
-// between builds (the list arrays hold at least, not exactly, the entries). A build may reorder the particles into
-// cell order (spatial locality for every later particle loop): the sorted
-// cell keys give the order, a caller-supplied function permutes all the
-// per-particle state (SphSystem: ParticleReorder), and the list is then built
-// on the reordered particles; inside a cell the particles keep their previous
-// order, so the order is reproducible from the stored state alone.
+// between builds (the list arrays hold at least, not exactly, the entries).
+// A build may reorder the particles into cell order (spatial locality for
+// every later particle loop): the sorted cell keys give the order, a
+// caller-supplied function permutes all the per-particle state (SphSystem:
+// ParticleReorder), and the list is then built on the reordered particles;
+// inside a cell the particles keep their previous order, so the order is
+// reproducible from the stored state alone.
 #pragma once
 
 #include <functional>
