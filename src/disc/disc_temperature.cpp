@@ -32,6 +32,15 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
       .doc(
           "Most lagged dt = infinity solves the first update's steady state may take before the run stops with "
           "its history (each settles the lagged limiter and Planck factors further).");
+  s.real("temperature.steady_forcing")
+      .default_value(radiation::FldSolver::kSteadyForcing)
+      .min(0.0)
+      .less_than(1.0)
+      .doc(
+          "The steady state's lagged solves converge to max(radiation.tolerance, this x the last relative change "
+          "of T), the first to this, and it ends on an exact solve (inexact Picard; Eisenstat & Walker 1996). 0: "
+          "every solve to radiation.tolerance (two runs that differ only in rounding, as on other MPI rank counts, "
+          "then agree to the solver tolerance instead of to the steady-state target).");
   s.real("temperature.max_growth")
       .default_value(10.0)
       .greater_than(1.0)
@@ -51,6 +60,7 @@ TemperatureSettings TemperatureSettings::from_deck(const core::Deck& d) {
   TemperatureSettings t;
   t.update_tolerance = d.real("temperature.update_tolerance");
   t.steady_solves = static_cast<int>(d.integer("temperature.steady_solves"));
+  t.steady_forcing = d.real("temperature.steady_forcing");
   t.max_growth = d.real("temperature.max_growth");
   t.gamma = d.real("temperature.gamma");
   t.viscous_heating = d.boolean("temperature.viscous_heating");
@@ -163,8 +173,8 @@ void DiscTemperature::solve(double elapsed) {
     // Band means at each cell's T follow every iterate, so that the steady state's are its own.
     radiation::FldSolver::FieldRefresh refresh;
     if (band_means_at_cell_T_) refresh = [this](const radiation::FldState& next) { refresh_band_means(next.T); };
-    const auto relaxed =
-        fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance, settings_.steady_solves, refresh);
+    const auto relaxed = fld_.relax_to_steady_state(fields_, state_, 0.1 * settings_.update_tolerance,
+                                                    settings_.steady_solves, refresh, settings_.steady_forcing);
     iterations_ += relaxed.iterations;
     solve_seconds_ += relaxed.solve_seconds;
     last_iterations_ = relaxed.iterations;

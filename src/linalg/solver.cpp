@@ -327,6 +327,7 @@ LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSe
     : name_(name),
       pattern_(std::move(pattern)),
       settings_(settings),
+      tolerance_(settings.tolerance),
       matrix_(make_matrix(name + "::A", pattern_)),
       scaled_(make_matrix(name + "::DA", pattern_)),
       distribution_(std::move(distribution)),
@@ -405,7 +406,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     }
   }
   Work& w = *work_;
-  const Real tol = settings_.tolerance;
+  const Real tol = tolerance_;
   const int n = pattern_.n_rows;
   const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
 
@@ -479,6 +480,12 @@ SolveReport LinearSolver::try_solve(const Vector& b, const Vector& x) {
   return report;
 }
 
+void LinearSolver::set_tolerance(Real tolerance) {
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw std::invalid_argument("linear solver tolerance must lie in (0, 1), got " + std::to_string(tolerance));
+  tolerance_ = tolerance;
+}
+
 SolveReport LinearSolver::solve(const Vector& b, const Vector& x, const RowDescriber& describe) {
   SolveReport report = try_solve(b, x);
   if (!report.converged) throw SolveFailure(failure_message(report, describe), report);
@@ -487,7 +494,7 @@ SolveReport LinearSolver::solve(const Vector& b, const Vector& x, const RowDescr
 
 std::string LinearSolver::failure_message(const SolveReport& report, const RowDescriber& describe) const {
   std::ostringstream out;
-  out << name_ << ": the linear solve failed on every rung (tolerance " << settings_.tolerance
+  out << name_ << ": the linear solve failed on every rung (tolerance " << tolerance_
       << "); the previous solution is kept.";
   for (const auto& a : report.attempts) {
     out << "\n  " << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations

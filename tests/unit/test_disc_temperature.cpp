@@ -253,6 +253,9 @@ TEST(DiscTemperature, DeckErrors) {
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.update_tolerance=0"}), core::DeckError);
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.gamma=1.0"}), core::DeckError);
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_solves=0"}), core::DeckError);
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_forcing=1"}), core::DeckError);
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_forcing=-0.1"}), core::DeckError);
+  EXPECT_NO_THROW(core::Deck::parse(kDeck, "exact", schema(), {"temperature.steady_forcing=0"}));
 }
 
 }  // namespace

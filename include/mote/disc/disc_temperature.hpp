@@ -51,9 +51,10 @@ namespace mote::disc {
 struct TemperatureSettings {
   double update_tolerance = 1e-3;  // predicted largest fractional change of T per call (RBO24: 0.1 %)
   int steady_solves = 30;          // most lagged solves of the first update's steady state
-  double max_growth = 10.0;        // next interval <= max_growth x the last elapsed one
-  double gamma = 1.4;              // adiabatic index of c_V
-  bool viscous_heating = true;     // eq. 44
+  double steady_forcing = radiation::FldSolver::kSteadyForcing;  // inexact lagged solves (0: exact)
+  double max_growth = 10.0;                                      // next interval <= max_growth x the last elapsed one
+  double gamma = 1.4;                                            // adiabatic index of c_V
+  bool viscous_heating = true;                                   // eq. 44
 
   static void declare(core::DeckSchema& schema);
   static TemperatureSettings from_deck(const core::Deck& deck);

@@ -147,6 +147,11 @@ class LinearSolver {
   SolveReport solve(const Vector& b, const Vector& x, const RowDescriber& describe = {});
   /// As solve, but returns the failed report instead of throwing.
   SolveReport try_solve(const Vector& b, const Vector& x);
+  /// The convergence tolerance of the next solves (settings().tolerance
+  /// until set; an outer iteration may loosen it while far from its own
+  /// fixed point). Throws std::invalid_argument outside (0, 1).
+  void set_tolerance(Real tolerance);
+  Real tolerance() const { return tolerance_; }
 
  private:
   SolveAttempt attempt(const Preconditioning& preconditioning, const Vector& x);
@@ -160,6 +165,7 @@ class LinearSolver {
   std::string name_;
   CrsPattern pattern_;
   SolverSettings settings_;
+  Real tolerance_;
   CrsMatrix matrix_;  // the caller's values
   CrsMatrix scaled_;  // D^-1 A (same graph)
   Distribution distribution_;

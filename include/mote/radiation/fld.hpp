@@ -114,7 +114,8 @@ class FldSolver {
   /// One implicit step of eq. 48-49 over dt (infinity: the steady state).
   /// Active cells of `state` are updated; on a failed solve (or a B <= 0)
   /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
-  linalg::SolveReport step(double dt, const FldFields& fields, FldState& state);
+  /// The solve converges to `tolerance`, or to radiation.tolerance when it is 0.
+  linalg::SolveReport step(double dt, const FldFields& fields, FldState& state, double tolerance = 0.0);
 
   /// What a relaxation to the steady state took (for the run log and history).
   struct Relaxation {
@@ -130,12 +131,22 @@ class FldSolver {
   /// Called before each solve after the first with the state it starts
   /// from, for fields that depend on T (band means at each cell's T).
   using FieldRefresh = std::function<void(const FldState& state)>;
+  /// Default forcing of the steady state's inexact solves (relax_to_steady_state).
+  static constexpr double kSteadyForcing = 1e-2;
   /// Steady state with the lagged limiter and Planck factors (and the fields
   /// that `refresh` renews) iterated to consistency: steps with dt = infinity
   /// until no active cell's T changes by more than `max_change` (relative).
-  /// Throws std::runtime_error after `max_solves` (state holds the last iterate).
+  /// Far from that fixed point a lagged system need not be solved exactly:
+  /// solve k converges to max(radiation.tolerance, forcing x the change of
+  /// solve k - 1) (1 for the first), an inexact Picard iteration with the
+  /// forcing term of inexact Newton methods (Eisenstat & Walker 1996). The
+  /// relaxation ends on an exact solve (to radiation.tolerance) that changed T
+  /// by no more than max_change: after a loose one that did, one more exact
+  /// solve follows, so that the result holds the energy balance to the solver
+  /// tolerance. Throws std::runtime_error after `max_solves` (state holds the last iterate).
   Relaxation relax_to_steady_state(const FldFields& fields, FldState& state, double max_change = 1e-6,
-                                   int max_solves = 30, const FieldRefresh& refresh = {});
+                                   int max_solves = 30, const FieldRefresh& refresh = {},
+                                   double forcing = kSteadyForcing);
 
   /// Radiative power leaving through the open sides (per radian of azimuth,
   /// summed over bands): the face fluxes of E^b with the diffusion
