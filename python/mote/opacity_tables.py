@@ -20,6 +20,7 @@ of isotropic scattering), which the format's reader refuses, so g is
 written clipped to [0, 1] (a change of k_sca (1 - g) below 2e-6 relative).
 """
 
+import os
 import sys
 
 import numpy as np
@@ -38,11 +39,13 @@ def write_table(path, sizes_cm, wavelengths_cm, k_abs, k_sca, g):
     if np.any(np.asarray(k_abs) < 0) or np.any(np.asarray(k_sca) < 0):
         raise ValueError("opacities must be >= 0")
     g = np.clip(np.asarray(g, dtype=float), 0.0, 1.0)
-    with open(path, "w") as out:
+    partial = path + ".partial"  # renamed over path when complete: an existing table is never left half written
+    with open(partial, "w") as out:
         out.write(f"{shape[0]} {shape[1]}\n")
         for i, a in enumerate(sizes_cm):
             for j, lam in enumerate(wavelengths_cm):
                 out.write(f"{a:.10e} {lam * 1e4:.10e} {k_abs[i][j]:.10e} {k_sca[i][j]:.10e} {g[i, j]:.10e}\n")
+    os.replace(partial, path)
 
 
 def from_dsharp_opac(npz_path, out_path):

@@ -80,28 +80,48 @@ TEST(Irradiation, OpaqueGridTakesAllTheLight) {
   EXPECT_NEAR(Ss(i, j, 0) + Ss(i, j, 1) + Ss(i, j, 2) + Ss(i, j, 3), S(i, j), 1e-12 * S(i, j));
 }
 
+/// Grey grains (rho kappa = k per cm, no scattering) on thin_disc() around
+/// sun_like(): starlight absorbed, C = 1, open sides at 3 K but the reflecting
+/// mid-plane, solver tolerance 1e-8; T = 100 K, E = 0 to start from.
+struct GreyDisc {
+  explicit GreyDisc(double k)
+      : grid(thin_disc(), core::Comm::world()),
+        constants(radiation::RadiationConstants::in(units::UnitSystem::cgs_units())),
+        fld(grid, settings(), constants),
+        fields(fld.make_fields()),
+        state(fld.make_state()) {
+    radiation::StellarIrradiation star(grid, sun_like(), stellar_bins(), fld_bands, constants);
+    RealView3 ext("ext", grid.nr_total(), grid.nt_total(), star.bins());
+    Kokkos::deep_copy(ext, k);
+    star.heat(ext, ext, fields.heating, fields.scattering_source);
+    Kokkos::deep_copy(fields.heat_capacity, 1.0);
+    Kokkos::deep_copy(fields.absorption, k);
+    Kokkos::deep_copy(fields.extinction, k);
+    Kokkos::deep_copy(state.T, 100.0);
+    Kokkos::deep_copy(state.E, 0.0);
+  }
+  static radiation::FldSettings settings() {
+    radiation::FldSettings s;
+    s.band_edges_cm = fld_bands;
+    s.boundaries.inner = s.boundaries.outer = s.boundaries.upper = RadiationBoundary::Open;
+    s.boundaries.lower = RadiationBoundary::Reflecting;
+    s.boundaries.T_ext = 3.0;
+    s.solver.tolerance = 1e-8;
+    return s;
+  }
+  mesh::Grid grid;
+  radiation::RadiationConstants constants;
+  radiation::FldSolver fld;
+  radiation::FldFields fields;
+  radiation::FldState state;
+};
+
 TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
-  const mesh::Grid grid(thin_disc(), core::Comm::world());
-  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
-  radiation::StellarIrradiation star(grid, sun_like(), stellar_bins(), fld_bands, constants);
-  const double k = 1e-20;  // rho kappa (1/cm): tau through the grid ~ 7e-6, grey, no scattering
-  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), star.bins());
-  Kokkos::deep_copy(ext, k);
-  radiation::FldSettings settings;
-  settings.band_edges_cm = fld_bands;
-  settings.boundaries.inner = settings.boundaries.outer = settings.boundaries.upper = RadiationBoundary::Open;
-  settings.boundaries.lower = RadiationBoundary::Reflecting;
-  settings.boundaries.T_ext = 3.0;
-  settings.solver.tolerance = 1e-8;
-  radiation::FldSolver fld(grid, settings, constants);
-  auto fields = fld.make_fields();
-  star.heat(ext, ext, fields.heating, fields.scattering_source);
-  Kokkos::deep_copy(fields.heat_capacity, 1.0);
-  Kokkos::deep_copy(fields.absorption, k);
-  Kokkos::deep_copy(fields.extinction, k);
-  auto state = fld.make_state();
-  Kokkos::deep_copy(state.T, 100.0);
-  Kokkos::deep_copy(state.E, 0.0);
+  GreyDisc disc(1e-20);  // rho kappa (1/cm): tau through the grid ~ 7e-6, grey, no scattering
+  const mesh::Grid& grid = disc.grid;
+  auto& fld = disc.fld;
+  auto& fields = disc.fields;
+  auto& state = disc.state;
   const auto relaxation = fld.relax_to_steady_state(fields, state);
   const int solves = relaxation.solves;
   auto T = Kokkos::create_mirror_view_and_copy(HostSpace(), state.T);
@@ -147,28 +167,14 @@ TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
 /// much (forcing FldSolver::kSteadyForcing x the last change): the first
 /// solve from T = 100 K, E = 0 takes fewer BiCGStab iterations than an exact
 /// one, and the result is still the fixed point: one more exact solve from it
-/// moves T by no more than the relaxation's target. A two-band grey disc 1e4
-/// times more opaque than D2's, so that the lagged limiter matters.
+/// moves T by no more than the relaxation's target. D2's grey disc made 1e4
+/// times more opaque, so that the lagged limiter matters.
 TEST(IrradiationSteadyState, InexactEarlySolvesReachTheSameFixedPoint) {
-  const mesh::Grid grid(thin_disc(), core::Comm::world());
-  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
-  radiation::StellarIrradiation star(grid, sun_like(), stellar_bins(), fld_bands, constants);
-  const double k = 1e-16;  // rho kappa (1/cm): tau through the grid ~ 0.07
-  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), star.bins());
-  Kokkos::deep_copy(ext, k);
-  radiation::FldSettings settings;
-  settings.band_edges_cm = fld_bands;
-  settings.boundaries.inner = settings.boundaries.outer = settings.boundaries.upper = RadiationBoundary::Open;
-  settings.boundaries.lower = RadiationBoundary::Reflecting;
-  settings.boundaries.T_ext = 3.0;
-  settings.solver.tolerance = 1e-8;
-  radiation::FldSolver fld(grid, settings, constants);
-  auto fields = fld.make_fields();
-  star.heat(ext, ext, fields.heating, fields.scattering_source);
-  Kokkos::deep_copy(fields.heat_capacity, 1.0);
-  Kokkos::deep_copy(fields.absorption, k);
-  Kokkos::deep_copy(fields.extinction, k);
-  auto state = fld.make_state();
+  GreyDisc disc(1e-16);  // rho kappa (1/cm): tau through the grid ~ 0.07
+  const mesh::Grid& grid = disc.grid;
+  auto& fld = disc.fld;
+  auto& fields = disc.fields;
+  auto& state = disc.state;
   const auto start = [&] {
     Kokkos::deep_copy(state.T, 100.0);
     Kokkos::deep_copy(state.E, 0.0);
