@@ -165,6 +165,16 @@ double DiscSimulation::min_dust_density() const {
   return grid_->comm().min(m);
 }
 
+std::string DiscSimulation::dt_limit() const {
+  const DustDynamics::StepLimit limit = dust_->step_limit();
+  std::string out = std::string("dust ") + DustDynamics::StepLimit::describe(limit.kind);
+  if (limit.kind == DustDynamics::StepLimit::kNone) return out;
+  const int s = limit.species;
+  return out + logging::format(" of species %d (a = %.3g cm) at R = %.4g au, theta = %.4g (cell %d, %d)", s,
+                               dust_->settings().sizes[static_cast<size_t>(s)] * units_.length,
+                               limit.R * units_.length / units::cgs::au, limit.theta, limit.i, limit.j);
+}
+
 std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
   std::vector<io::Diagnostic> d;
   double total = 0.0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
@@ -451,54 +452,160 @@ void DustDynamics::step(double dt) {
   fill_ghosts(W);
 }
 
+namespace {
+
+/// The step limits of one species in one cell, RBO24 eq. 17-19 with the
+/// explicit-source limit (see dust_dynamics.hpp): their minimum and its kind.
+struct CellStepLimit {
+  using Kind = DustDynamics::StepLimit::Kind;
+  View4 W;
+  RealView1 dR, Rc, tan_te, sc, sizes;
+  RealView2 Zc, nu, rho_g, cs2;
+  StellarGravity star;
+  Real rho_m, ca, cd, floor, floor_ratio;
+  bool drag, diffuse, radial, gravity, curvature;
+
+  KOKKOS_INLINE_FUNCTION static void keep(Real t, int k, Real& m, int& kind) {
+    if (t < m) {
+      m = t;
+      kind = k;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION Real operator()(int i, int j, int s, int& kind) const {
+    Real m = Kokkos::reduction_identity<Real>::min();
+    kind = Kind::kNone;
+    const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
+    if (diffuse) {
+      const Real D = nu(i, j) / sc(s);
+      const bool along_R = radial && dR(i) * dR(i) < dZ * dZ;
+      const Real dx2 = along_R ? dR(i) * dR(i) : dZ * dZ;
+      if (D > 0) keep(cd * dx2 / D, along_R ? Kind::kDiffusionR : Kind::kDiffusionZ, m, kind);
+    }
+    // Advection and sources only where there is dust (cells near the floor move with the gas).
+    if (W(i, j, s, kRho) < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j))) return m;
+    const Real vR = math::fabs(W(i, j, s, kVR)), vZ = math::fabs(W(i, j, s, kVZ));
+    if (radial && vR > 0) keep(ca * dR(i) / vR, Kind::kAdvectionR, m, kind);
+    if (vZ > 0) keep(ca * dZ / vZ, Kind::kAdvectionZ, m, kind);
+    if (gravity) {
+      // Explicit sources (eq. 6; not in eq. 18, it matters when the dust starts at
+      // rest or decoupled): a step moves the dust by about a dt min(dt, t_s), the
+      // implicit drag capping its velocity at the terminal a t_s; this stays below
+      // C_adv of a cell.
+      Real aR, aZ;
+      star.acceleration(Rc(i), Zc(i, j), aR, aZ);
+      if (curvature) aR += math::square(W(i, j, s, kVphi)) / Rc(i);
+      aR = math::fabs(aR);
+      aZ = math::fabs(aZ);
+      const Real ts =
+          drag ? dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j))) : Real(1e300);
+      if (radial && aR > 0) keep(source_step_limit(ca, dR(i), aR, ts), Kind::kSourceR, m, kind);
+      if (aZ > 0) keep(source_step_limit(ca, dZ, aZ, ts), Kind::kSourceZ, m, kind);
+    }
+    return m;
+  }
+};
+
+CellStepLimit cell_step_limit(const mesh::Grid& grid, const DustSettings& st, const View4& W, const GasFields& gas,
+                              const RealView1& schmidt, const RealView1& sizes) {
+  return {W,
+          grid.dR,
+          grid.Rc,
+          grid.tan_te,
+          schmidt,
+          sizes,
+          grid.Zc,
+          gas.nu,
+          gas.rho,
+          gas.cs2,
+          st.star,
+          st.rho_grain,
+          st.cfl_advection,
+          st.cfl_diffusion,
+          st.floor,
+          st.floor_ratio,
+          st.drag,
+          st.diffusion,
+          st.radial_fluxes,
+          st.gravity,
+          st.gravity && grid.geometry == mesh::Geometry::Cylindrical};
+}
+
+}  // namespace
+
 double DustDynamics::max_dt() const {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
-  auto W_ = W;
-  auto dR = grid_.dR, Rc = grid_.Rc, tan_te = grid_.tan_te;
-  auto nu = gas_.nu, rho_g = gas_.rho, cs2 = gas_.cs2;
-  auto sc = schmidt_, sizes = sizes_;
-  const Real rho_m = settings_.rho_grain;
-  const bool drag = settings_.drag;
-  const Real ca = settings_.cfl_advection, cd = settings_.cfl_diffusion;
-  const Real floor = settings_.floor, floor_ratio = settings_.floor_ratio;
-  const bool diffuse = settings_.diffusion, radial = settings_.radial_fluxes;
-  const bool gravity = settings_.gravity;
-  const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
-  const StellarGravity star = settings_.star;
-  auto Zc = grid_.Zc;
+  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, sizes_);
   Real dt = std::numeric_limits<Real>::max();
   Kokkos::parallel_reduce(
       "disc::dust_max_dt", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
       KOKKOS_LAMBDA(int i, int j, int s, Real& m) {
-        const Real dZ = Rc(i) * (tan_te(j + 1) - tan_te(j));
-        if (diffuse) {
-          const Real D = nu(i, j) / sc(s);
-          const Real dx2 = radial ? math::min(dR(i) * dR(i), dZ * dZ) : dZ * dZ;
-          if (D > 0) m = math::min(m, cd * dx2 / D);
-        }
-        // Advection and sources only where there is dust (cells near the floor move with the gas).
-        if (W_(i, j, s, kRho) < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j))) return;
-        const Real vR = math::fabs(W_(i, j, s, kVR)), vZ = math::fabs(W_(i, j, s, kVZ));
-        if (radial && vR > 0) m = math::min(m, ca * dR(i) / vR);
-        if (vZ > 0) m = math::min(m, ca * dZ / vZ);
-        if (gravity) {
-          // Explicit sources (eq. 6; not in eq. 18, it matters when the dust starts at
-          // rest or decoupled): a step moves the dust by about a dt min(dt, t_s), the
-          // implicit drag capping its velocity at the terminal a t_s; this stays below
-          // C_adv of a cell.
-          Real aR, aZ;
-          star.acceleration(Rc(i), Zc(i, j), aR, aZ);
-          if (curvature) aR += math::square(W_(i, j, s, kVphi)) / Rc(i);
-          aR = math::fabs(aR);
-          aZ = math::fabs(aZ);
-          const Real ts =
-              drag ? dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j))) : Real(1e300);
-          if (radial && aR > 0) m = math::min(m, source_step_limit(ca, dR(i), aR, ts));
-          if (aZ > 0) m = math::min(m, source_step_limit(ca, dZ, aZ, ts));
-        }
+        int kind;
+        m = math::min(m, limit(i, j, s, kind));
       },
       Kokkos::Min<Real>(dt));
   return grid_.comm().min(dt);
+}
+
+const char* DustDynamics::StepLimit::describe(int kind) {
+  switch (kind) {
+    case kDiffusionR:
+      return "turbulent diffusion along R (dust.cfl_diffusion)";
+    case kDiffusionZ:
+      return "turbulent diffusion along theta (dust.cfl_diffusion)";
+    case kAdvectionR:
+      return "advection along R (dust.cfl_advection)";
+    case kAdvectionZ:
+      return "advection along theta (dust.cfl_advection)";
+    case kSourceR:
+      return "gravity and curvature along R (dust.cfl_advection)";
+    case kSourceZ:
+      return "gravity along Z (dust.cfl_advection)";
+    default:
+      return "nothing (no dust above 10 x its floor, no diffusion)";
+  }
+}
+
+DustDynamics::StepLimit DustDynamics::step_limit() const {
+  const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
+  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, sizes_);
+  using Reducer = Kokkos::MinLoc<Real, long long>;
+  Reducer::value_type best;
+  const long long kinds = StepLimit::kKinds + 1;  // kNone is stored as 0
+  Kokkos::parallel_reduce(
+      "disc::dust_step_limit", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
+      KOKKOS_LAMBDA(int i, int j, int s, Reducer::value_type& m) {
+        int kind;
+        const Real t = limit(i, j, s, kind);
+        if (t < m.val) {
+          m.val = t;
+          m.loc = ((static_cast<long long>(i - ng) * nt + (j - ng)) * ns + s) * kinds + (kind + 1);
+        }
+      },
+      Reducer(best));
+  // The rank holding the global minimum (the lowest of them) reports where it is.
+  const auto& comm = grid_.comm();
+  StepLimit out;
+  out.dt = comm.min(best.val);
+  const int owner = comm.min(best.val == out.dt ? comm.rank() : comm.size());
+  std::vector<double> where(6, 0.0);
+  if (comm.rank() == owner && best.val < Kokkos::reduction_identity<Real>::min()) {
+    const long long loc = best.loc / kinds;
+    const int i = static_cast<int>(loc / ns / nt), j = static_cast<int>(loc / ns % nt);
+    where = {static_cast<double>(best.loc % kinds),
+             static_cast<double>(loc % ns),
+             static_cast<double>(j),
+             static_cast<double>(i + grid_.i_offset),
+             grid_.Rc_h(i + ng),
+             grid_.tc_h(j + ng)};
+  }
+  where = comm.sum(where);
+  out.kind = static_cast<int>(where[0]) - 1;
+  out.species = static_cast<int>(where[1]);
+  out.j = static_cast<int>(where[2]);
+  out.i = static_cast<int>(where[3]);
+  out.R = where[4];
+  out.theta = where[5];
+  return out;
 }
 
 void DustDynamics::account_outflow(double dt) {

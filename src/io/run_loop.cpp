@@ -425,12 +425,15 @@ double remaining_wall_time(double wall, double time_at_start, double time, doubl
   return wall * (t_end - time) / (time - time_at_start);
 }
 
-void RunLoop::progress(const State& s, double time_at_start, double wall, long long steps_done) const {
+void RunLoop::progress(const Simulation& sim, const State& s, double time_at_start, double wall,
+                       long long steps_done) const {
   const double frac = settings_.t_end > 0 ? s.time / settings_.t_end : 1.0;
   const double rate = wall > 0 ? steps_done / wall : 0.0;
   const double eta = remaining_wall_time(wall, time_at_start, s.time, settings_.t_end);
+  const std::string limit = sim.dt_limit();
   logging::info(logging::format("step %8lld  t = %.6e  dt = %.3e  %5.1f%%  ETA %s  %.1f steps/s", s.step, s.time, s.dt,
-                                100.0 * frac, logging::hms(eta).c_str(), rate));
+                                100.0 * frac, logging::hms(eta).c_str(), rate),
+                limit.empty() ? "" : "  (next dt: " + limit + ")");
 }
 
 int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
@@ -510,8 +513,9 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
       write_checkpoint(sim, s);
       last_checkpoint = wall_now();
     }
-    if (s.step == start_step + 1 || wall_now() - last_progress >= settings_.progress_interval) {
-      progress(s, start_time, wall_now() - wall_start, s.step - start_step);
+    // Decided together: a simulation's dt_limit() may need every rank.
+    if (s.step == start_step + 1 || comm_.max(wall_now() - last_progress) >= settings_.progress_interval) {
+      progress(sim, s, start_time, wall_now() - wall_start, s.step - start_step);
       last_progress = wall_now();
     }
   }
@@ -519,7 +523,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   if (report_non_finite(sim, s)) return core::kExitNonFinite;
   if (!snapshot_current) write_snapshot(sim, s);
   write_checkpoint(sim, s);
-  progress(s, start_time, wall_now() - wall_start, s.step - start_step);
+  progress(sim, s, start_time, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
   logging::info(finished ? "finished" : "stopped at run.max_steps",
                 logging::format(": %lld steps, t = %.10g in %.3f s (%.1f steps/s)", s.step - start_step, s.time, wall,

@@ -167,6 +167,46 @@ TEST(DiscDriver, DustAtRestIsLimitedByTheDisplacementOfItsAcceleration) {
       expected = std::min(expected, std::sqrt(2 * c_adv * dZ / aZ));
     }
   EXPECT_NEAR(sim.max_dt() / expected, 1.0, 1e-12);
+  // The step limit names the source limit along Z, and its cell gives that step
+  // (the grid is symmetric about Z = 0 and the species alike, so which of the
+  // equal cells and species is not asserted).
+  const auto limit = sim.dust().step_limit();
+  EXPECT_EQ(limit.kind, disc::DustDynamics::StepLimit::kSourceZ);
+  EXPECT_EQ(limit.dt, sim.max_dt());
+  const int i = limit.i + g.ng, j = limit.j + g.ng;
+  const double R = g.Rc_h(i), Z = R * std::tan(g.tc_h(j)), r3 = std::pow(R * R + Z * Z, 1.5);
+  const double dZ = R * (std::tan(g.te_h(j + 1)) - std::tan(g.te_h(j))), aZ = GM * std::fabs(Z) / r3;
+  EXPECT_NEAR(std::sqrt(2 * c_adv * dZ / aZ) / expected, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(limit.R, R);
+  EXPECT_DOUBLE_EQ(limit.theta, g.tc_h(j));
+}
+
+TEST(DiscDriver, StepLimitNamesTheFastestDustAndWhereItIs) {
+  // One species in one cell given a radial velocity whose CFL step (eq. 18) is a
+  // thousandth of the present one: max_dt() and step_limit() both take it, and the
+  // run log's dt_limit() names the constraint, the species and the cell.
+  const auto deck = make_deck({"driver.evolve_gas=false"});
+  const auto units = units::unit_system_by_name("au_msun");
+  disc::DiscSimulation sim(deck, core::Comm::world(), units,
+                           disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
+  const auto& g = sim.grid();
+  const int i0 = g.ng + 7, j0 = g.ng + 5, s0 = 1;
+  auto R_edges = g.Re_h;
+  const double vR = 0.4 * (R_edges(i0 + 1) - R_edges(i0)) / (1e-3 * sim.max_dt());
+  auto W = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.dust().W);
+  W(i0, j0, s0, disc::kVR) = -vR;
+  Kokkos::deep_copy(sim.dust().W, W);
+  const auto limit = sim.dust().step_limit();
+  EXPECT_EQ(limit.kind, disc::DustDynamics::StepLimit::kAdvectionR);
+  EXPECT_EQ(limit.species, s0);
+  EXPECT_EQ(limit.i, i0 - g.ng);
+  EXPECT_EQ(limit.j, j0 - g.ng);
+  EXPECT_EQ(limit.dt, sim.max_dt());
+  EXPECT_NEAR(limit.dt * vR / (0.4 * (R_edges(i0 + 1) - R_edges(i0))), 1.0, 1e-12);
+  const std::string text = sim.dt_limit();
+  std::printf("%s\n", text.c_str());
+  EXPECT_NE(text.find("advection along R (dust.cfl_advection) of species 1 (a = 0.1 cm)"), std::string::npos);
+  EXPECT_NE(text.find("(cell 7, 5)"), std::string::npos);
 }
 
 TEST(DiscDriver, CoagulationFromTheDeckConservesTotalDustMass) {

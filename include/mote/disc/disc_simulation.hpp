@@ -66,7 +66,8 @@ class DiscSimulation : public io::Simulation {
   const units::UnitSystem& units() const { return units_; }
 
   double max_dt() override { return driver_->max_dt(); }
-  std::string dt_limit() const override { return "dust CFL of advection, sources and diffusion (dust.cfl_*)"; }
+  /// "dust <constraint> of species s (a = .. cm) at R = .. au, theta = .. (cell i, j)", from the present state.
+  std::string dt_limit() const override;
   void advance(double time, double dt) override { driver_->advance(time, dt); }
   void write_snapshot(io::SnapshotWriter& out) const override;
   void save_state(io::H5File& file) const override;

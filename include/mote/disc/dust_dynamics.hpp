@@ -92,6 +92,17 @@ class DustDynamics {
   void set_gas(const GasFields& gas);
   /// Stable time-step (eq. 17-19), global over ranks.
   double max_dt() const;
+  /// The constraint that sets max_dt(): its kind, and the species and cell
+  /// (active indices, i over the whole grid) where it binds; global over ranks.
+  struct StepLimit {
+    enum Kind : int { kNone = -1, kDiffusionR, kDiffusionZ, kAdvectionR, kAdvectionZ, kSourceR, kSourceZ, kKinds };
+    double dt = 0.0;
+    int kind = kNone, i = 0, j = 0, species = 0;
+    double R = 0.0, theta = 0.0;  // the cell's centre (code length, rad)
+    /// "advection along R (dust.cfl_advection)", ...
+    static const char* describe(int kind);
+  };
+  StepLimit step_limit() const;
   /// One predictor-corrector step of length dt (RBO24 sec. 3.1 i-viii).
   void step(double dt);
   /// Total mass of species s over the whole grid (all ranks).

@@ -99,7 +99,7 @@ class RunLoop {
   bool report_non_finite(const Simulation& sim, const State& s) const;
   void log_work_summary(const Simulation& sim) const;
   /// A progress line; `time_at_start` is the time this process started from (a restart's).
-  void progress(const State& s, double time_at_start, double wall, long long steps_done) const;
+  void progress(const Simulation& sim, const State& s, double time_at_start, double wall, long long steps_done) const;
 
   RunSettings settings_;
   std::string problem_;

@@ -32,8 +32,9 @@ class Simulation {
 
   /// Largest stable time-step from the current state, identical on every rank.
   virtual double max_dt() = 0;
-  /// The constraint that set the last max_dt() ("dust advection CFL"), for the
-  /// message when it falls below run.dt_min; empty when the engine cannot tell.
+  /// The constraint that sets max_dt() ("dust advection CFL ..."), for the
+  /// progress lines and the message when dt falls below run.dt_min; empty when
+  /// the engine cannot tell. Called on every rank together.
   virtual std::string dt_limit() const { return {}; }
   /// Advances the state from `time` to `time + dt`.
   virtual void advance(double time, double dt) = 0;
