@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The coupled disc driver (dust + evolving gas, RBO24 sec. 6) on 2 MPI ranks
-(radial slabs) matches 1 rank to 1e-12 (issue 5), and a 2-rank checkpoint
-restarts on 1 rank to the same state.
+(radial slabs) matches 1 rank to 1e-12 (issue 5), a 2-rank checkpoint
+restarts on 1 rank to the same state, and the last progress line names the
+same constraint, species and cell for the next step on 1 and 2 ranks.
 
 usage: disc_driver_mpi.py EXE WORKDIR MPIEXEC [ARGS ...]
 """
@@ -21,8 +22,8 @@ shutil.rmtree(work, ignore_errors=True)
 common = ["grid.nr=17", "grid.ntheta=24", "run.t_end=40", "output.snapshot_dt=20", "driver.evolve_gas=true",
           "driver.gas_every=2", "gas.inner_boundary=zero_torque", "run.progress_interval=100"]
 one, two, mixed = (os.path.join(work, d) for d in ("one", "two", "mixed"))
-run([exe, deck, *common, f"output.dir={one}"])
-run(launcher + [exe, deck, *common, f"output.dir={two}"])
+log_one = run([exe, deck, *common, f"output.dir={one}"]).stdout
+log_two = run(launcher + [exe, deck, *common, f"output.dir={two}"]).stdout
 run(launcher + [exe, deck, *common, "run.max_steps=7", f"output.dir={mixed}"])
 run([exe, "--restart", "latest", deck, *common, f"output.dir={mixed}"])
 checks = Checks()
@@ -36,6 +37,15 @@ for n in names:
     d3 = max(d3, np.max(np.abs(a.fields[n] - c.fields[n])) / scale)
 checks.check(d2 <= 1e-12, f"2 ranks match 1 rank over {len(names)} dust and gas fields: max relative difference {d2:.2e} <= 1e-12")
 checks.check(d3 <= 1e-12, f"2-rank checkpoint restarted on 1 rank: {d3:.2e} <= 1e-12")
+
+
+def next_dt(log):
+    lines = [l for l in log.splitlines() if l.startswith("step") and "(next dt: " in l]
+    return lines[-1].split("(next dt: ", 1)[1] if lines else ""
+
+
+n1, n2 = next_dt(log_one), next_dt(log_two)
+checks.check(n1 == n2 and "of species" in n1 and "(cell " in n1, f"next-step constraint on 1 and 2 ranks: '{n1}' / '{n2}'")
 sa = a.data["gas_Sigma"]
 checks.check(np.max(np.abs(sa - b.data["gas_Sigma"])) <= 1e-12 * np.max(sa), "gas Sigma identical on 1 and 2 ranks")
 sys.exit(checks.finish())
