@@ -8,9 +8,10 @@
 // Wu et al. stencil with the diffusive momentum flux of eq. 16, explicit
 // curvature and gravity sources (eq. 6) and implicit drag on the primitive
 // velocities (steps iv, viii; eq. 13-14). Time-step from eq. 17-19, plus
-// dt <= C_adv (dx / |a|)^1/2 for the explicit gravity + curvature acceleration a
-// (dust starting at rest or decoupled from the gas would otherwise take
-// steps that empty cells, breaking positivity and conservation).
+// dt <= max((2 C_adv dx / |a|)^1/2, C_adv dx / (|a| t_s)) for the explicit
+// gravity + curvature acceleration a (dust starting at rest or decoupled from
+// the gas would otherwise take steps that empty cells, breaking positivity and
+// conservation).
 //
 // dust.radial_fluxes = false makes every column a 1D vertical problem
 // (settling-diffusion tests, RBO24 sec. 3.6 / VALIDATION C2): no flux through
