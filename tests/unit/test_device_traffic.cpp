@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "disc_driver_deck.hpp"
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
@@ -128,46 +129,15 @@ std::unique_ptr<sph::SphSimulation> dusty_shock() {
   return std::make_unique<sph::SphSimulation>(sph::dustyshock(shock, cfg, ds).make_system(), units::UnitSystem{});
 }
 
-const char* kDiscDeck = R"(
-[grid]
-nr = 12
-R_in = 8.0
-R_out = 12.0
-r_spacing = "log"
-ntheta = 16
-theta_min = -0.15
-theta_max = 0.15
-[boundaries]
-inner = "closed"
-outer = "closed"
-lower = "closed"
-upper = "closed"
-[gas]
-R_ref = 10.0
-T_ref = 88.5
-alpha = 1e-2
-Sigma0 = 5e-6
-inner_boundary = "closed"
-outer_boundary = "closed"
-[driver]
-evolve_gas = true
-[coagulation]
-kernel = "physical"
-)";
-
 std::unique_ptr<disc::DiscSimulation> coupled_disc(int species) {
-  static const core::DeckSchema schema = [] {
-    core::DeckSchema d;
-    disc::DiscSimulation::declare(d);
-    return d;
-  }();
   std::ostringstream sizes;
   sizes.precision(17);
   sizes << "dust.sizes=[";
   // 1 to 10 um: 7 bins per mass decade for 22 species (RBO24 sec. 5).
   for (int k = 0; k < species; ++k) sizes << (k ? ", " : "") << 1e-4 * std::pow(10.0, double(k) / (species - 1));
   sizes << "]";
-  const auto deck = core::Deck::parse(kDiscDeck, "test_device_traffic", schema, {sizes.str()});
+  const auto deck =
+      test_decks::disc_driver_deck({"grid.ntheta=16", sizes.str()}, "[coagulation]\nkernel = \"physical\"\n");
   return std::make_unique<disc::DiscSimulation>(
       deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
       disc::DiscSimulation::well_mixed(std::vector<double>(species, 1e-3), 1e-40));
@@ -273,18 +243,14 @@ TEST(DeviceTraffic, DiscTemperatureUpdatesReadBackOnlyTheSolverConvergenceMeasur
   // size (the solver's restore point x0, r = b, the previous T and E, T into the gas, Kokkos Kernels' level pointers):
   // device-internal on a GPU, at most 7 per update. The only allocations are Kokkos Kernels' own work arrays inside the
   // spiluk numeric phase ("iw", "Host level pointers").
-  static const core::DeckSchema schema = [] {
-    core::DeckSchema d;
-    disc::DiscSimulation::declare(d);
-    return d;
-  }();
   const std::string radiation =
+      "[coagulation]\nkernel = \"physical\"\n"
       "[radiation]\nbands = 4\nstellar_bins = 20\ntolerance = 1e-8\n"
       "[temperature]\nmax_growth = 1.5\n";
   for (const std::string means : {"fixed", "local"}) {  // band means at T_binning, or per cell at every update
     SCOPED_TRACE("radiation.band_means = " + means);
-    const auto deck = core::Deck::parse(std::string(kDiscDeck) + radiation, "test_device_traffic", schema,
-                                        {"dust.sizes=[1e-4, 1e-3]", "radiation.band_means=\"" + means + "\""});
+    const auto deck = test_decks::disc_driver_deck(
+        {"grid.ntheta=16", "dust.sizes=[1e-4, 1e-3]", "radiation.band_means=\"" + means + "\""}, radiation);
     disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
                              disc::DiscSimulation::well_mixed({1e-2, 1e-2}, 1e-40));
     const auto fld_iterations = [&sim] {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "disc_driver_deck.hpp"
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
@@ -21,45 +22,7 @@ namespace {
 
 using namespace mote;
 
-const char* kDeck = R"(
-[grid]
-nr = 12
-R_in = 8.0
-R_out = 12.0
-r_spacing = "log"
-ntheta = 24
-theta_min = -0.15
-theta_max = 0.15
-[boundaries]
-inner = "closed"
-outer = "closed"
-lower = "closed"
-upper = "closed"
-[gas]
-R_ref = 10.0
-T_ref = 88.5
-alpha = 1e-2
-Sigma0 = 5e-6
-inner_boundary = "closed"
-outer_boundary = "closed"
-[dust]
-sizes = [1e-3, 1e-1, 10.0]
-[driver]
-evolve_gas = true
-)";
-
-const core::DeckSchema& schema() {
-  static const core::DeckSchema s = [] {
-    core::DeckSchema d;
-    disc::DiscSimulation::declare(d);
-    return d;
-  }();
-  return s;
-}
-
-core::Deck make_deck(const std::vector<std::string>& overrides = {}) {
-  return core::Deck::parse(kDeck, "test_disc_driver", schema(), overrides);
-}
+core::Deck make_deck(const std::vector<std::string>& overrides = {}) { return test_decks::disc_driver_deck(overrides); }
 
 TEST(DiscDriver, ClosedBoxConservesDustPerSpeciesAndGas) {
   const auto deck = make_deck();
@@ -219,8 +182,8 @@ TEST(DiscDriver, CoagulationFromTheDeckConservesTotalDustMass) {
   sizes << "dust.sizes=[";
   for (int k = 0; k < 12; ++k) sizes << (k ? ", " : "") << 1e-4 * std::pow(10.0, 3.0 * k / 11.0);
   sizes << "]";
-  const auto deck = core::Deck::parse(std::string(kDeck) + "[coagulation]\nkernel = \"physical\"\n", "test_disc_coag",
-                                      schema(), {"driver.evolve_gas=false", sizes.str()});
+  const auto deck =
+      test_decks::disc_driver_deck({"driver.evolve_gas=false", sizes.str()}, "[coagulation]\nkernel = \"physical\"\n");
   const auto units = units::unit_system_by_name("au_msun");
   disc::DiscSimulation sim(deck, core::Comm::world(), units,
                            disc::DiscSimulation::well_mixed(std::vector<double>(12, 1e-3), 1e-40));

@@ -9,46 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "disc_driver_deck.hpp"
 #include "mote/core/comm.hpp"
-#include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_simulation.hpp"
 
-namespace {
-
 using namespace mote;
-
-const char* kDeck = R"(
-[grid]
-nr = 12
-R_in = 8.0
-R_out = 12.0
-r_spacing = "log"
-ntheta = 16
-theta_min = -0.15
-theta_max = 0.15
-[gas]
-R_ref = 10.0
-T_ref = 88.5
-alpha = 1e-2
-Sigma0 = 5e-6
-[dust]
-sizes = [1e-3, 1e-1, 10.0]
-[driver]
-evolve_gas = false
-)";
-
-core::Deck make_deck() {
-  static const core::DeckSchema schema = [] {
-    core::DeckSchema d;
-    disc::DiscSimulation::declare(d);
-    return d;
-  }();
-  return core::Deck::parse(kDeck, "test_mpi_disc_step_limit", schema, {});
-}
-
-}  // namespace
 
 TEST(MpiDiscStepLimit, EveryRankNamesTheBindingCellOfEitherSlab) {
   const auto comm = core::Comm::world();
@@ -60,7 +27,8 @@ TEST(MpiDiscStepLimit, EveryRankNamesTheBindingCellOfEitherSlab) {
     return e;
   }();
   for (const int ig : {2, 9}) {
-    disc::DiscSimulation sim(make_deck(), comm, units, disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
+    disc::DiscSimulation sim(test_decks::disc_driver_deck({"driver.evolve_gas=false"}), comm, units,
+                             disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
     const auto& g = sim.grid();
     const double dt0 = sim.max_dt();
     const int j = 5, s = 2;
