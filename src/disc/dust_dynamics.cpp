@@ -61,6 +61,18 @@ void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, 
   par_for(name, i0, i1, j0, j1, 0, ns, f);
 }
 
+/// An outflow ghost on a theta side (outward along +theta when `side` = +1, -theta
+/// when -1) holding a copy of its edge cell: if that cell moves into the grid, the
+/// ghost's velocity becomes its mirror image in the face, (sn, cn) the face's
+/// (sin, cos), so the normal component changes sign and the tangential one stays.
+template <class W>
+KOKKOS_INLINE_FUNCTION void reflect_inflow(const W& w, int i, int j, int s, Real sn, Real cn, int side) {
+  const Real vn = -w(i, j, s, kVR) * sn + w(i, j, s, kVZ) * cn;
+  if (vn * side >= 0) return;
+  w(i, j, s, kVR) += 2.0 * vn * sn;
+  w(i, j, s, kVZ) -= 2.0 * vn * cn;
+}
+
 /// Per-cell reconstruction geometry along one direction from cell centres xc and
 /// edges xe: inv_dp, inv_dm, c_F, c_B (RBO24 sec. 3.1, eq. 9-10). A free function:
 /// nvcc does not allow extended lambdas in constructors.
@@ -211,9 +223,13 @@ void DustDynamics::fill_ghosts(const View4& w) {
   const Real floor = settings_.floor;
   const auto& b = settings_.boundaries;
   // Radial sides first (active rows j), then theta sides over all i, which fills the corners.
+  // Outflow sides let dust leave and none enter (as cuDisc's open boundaries): where the
+  // edge cell moves into the grid, the ghost takes its mirror velocity, so the face flux
+  // is that of two diverging states, zero.
   if (grid_.has_inner_boundary() || grid_.has_outer_boundary()) {
     const bool do_in = grid_.has_inner_boundary(), do_out = grid_.has_outer_boundary();
     const bool zero_in = b.inner == mesh::BoundaryKind::Zero, zero_out = b.outer == mesh::BoundaryKind::Zero;
+    const bool open_in = b.inner == mesh::BoundaryKind::Outflow, open_out = b.outer == mesh::BoundaryKind::Outflow;
     par_for(
         "disc::dust_bc_radial", 0, ng, ng, ng + nt, 0, ns, KOKKOS_LAMBDA(int g, int j, int s) {
           for (int k = 0; k < kDustVars; ++k) {
@@ -222,9 +238,16 @@ void DustDynamics::fill_ghosts(const View4& w) {
           }
           if (do_in && zero_in) w(g, j, s, kRho) = floor;
           if (do_out && zero_out) w(ng + nr + g, j, s, kRho) = floor;
+          if (do_in && open_in && w(ng, j, s, kVR) > 0) w(g, j, s, kVR) = -w(ng, j, s, kVR);
+          if (do_out && open_out && w(ng + nr - 1, j, s, kVR) < 0)
+            w(ng + nr + g, j, s, kVR) = -w(ng + nr - 1, j, s, kVR);
         });
   }
   const bool zero_lo = b.lower == mesh::BoundaryKind::Zero, zero_hi = b.upper == mesh::BoundaryKind::Zero;
+  const bool open_lo = b.lower == mesh::BoundaryKind::Outflow, open_hi = b.upper == mesh::BoundaryKind::Outflow;
+  // The theta faces' normal, (-sin, cos) in (R, Z), as compute_fluxes takes it.
+  const bool radial = settings_.radial_fluxes;
+  auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
   par_for(
       "disc::dust_bc_theta", 0, NI, 0, ng, 0, ns, KOKKOS_LAMBDA(int i, int g, int s) {
         for (int k = 0; k < kDustVars; ++k) {
@@ -233,6 +256,8 @@ void DustDynamics::fill_ghosts(const View4& w) {
         }
         if (zero_lo) w(i, g, s, kRho) = floor;
         if (zero_hi) w(i, ng + nt + g, s, kRho) = floor;
+        if (open_lo) reflect_inflow(w, i, g, s, radial ? sin_te(ng) : Real(0), cos_te(ng), -1);
+        if (open_hi) reflect_inflow(w, i, ng + nt + g, s, radial ? sin_te(ng + nt) : Real(0), cos_te(ng + nt), +1);
       });
 }
 
@@ -276,6 +301,10 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
   const bool closed_in = grid_.has_inner_boundary() && b.inner == mesh::BoundaryKind::Closed;
   const bool closed_out = grid_.has_outer_boundary() && b.outer == mesh::BoundaryKind::Closed;
   const bool closed_lo = b.lower == mesh::BoundaryKind::Closed, closed_hi = b.upper == mesh::BoundaryKind::Closed;
+  // No turbulent diffusion through the grid's own sides either (as cuDisc): the copied
+  // ghost densities over the gas's ghosts would diffuse dust in wherever the gas thins
+  // outwards.
+  const bool edge_in = grid_.has_inner_boundary(), edge_out = grid_.has_outer_boundary();
 
   // Radial faces at Re(i), i in [ng, ng + nr]; cells L = i-1, R = i.
   if (second_order) compute_slopes(w, true);
@@ -301,7 +330,8 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
           f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
           for (int k = 0; k < kDustVars; ++k) f[k] *= AR(i, j);
-          if (diffuse && rho_g(i - 1, j) > gas_cut && rho_g(i, j) > gas_cut) {
+          const bool on_edge = (i == ng && edge_in) || (i == ng + nr && edge_out);
+          if (diffuse && !on_edge && rho_g(i - 1, j) > gas_cut && rho_g(i, j) > gas_cut) {
             const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
             const Real fd = coef.radial_flux(u, i, j) / sc(s);  // already x area
             const Real* up = fd > 0 ? ql : qr;
@@ -341,7 +371,8 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           f[kAngMom] = upwind_flux(side, ql[kRho] * ql[kVphi] * R, vl, qr[kRho] * qr[kVphi] * R, vr);
           f[kMomZ] = upwind_flux(side, ql[kRho] * ql[kVZ], vl, qr[kRho] * qr[kVZ], vr);
           for (int k = 0; k < kDustVars; ++k) f[k] *= AZ(i, j);
-          if (diffuse && rho_g(i, j - 1) > gas_cut && rho_g(i, j) > gas_cut) {
+          const bool on_edge = j == ng || j == ng + nt;
+          if (diffuse && !on_edge && rho_g(i, j - 1) > gas_cut && rho_g(i, j) > gas_cut) {
             const auto u = [&](int a, int c) { return w(a, c, s, kRho) * inv_rho_g(a, c); };
             Real fd;
             if (radial) {

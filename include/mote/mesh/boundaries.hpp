@@ -1,5 +1,7 @@
 // Boundary conditions of the (R, theta) grid (RBO24 sec. 2), set per side:
-//   outflow: ghost cells copy the adjacent active cell;
+//   outflow: ghost cells copy the adjacent active cell; what moves out leaves, and
+//            nothing flows in (the dust ghost mirrors an inward velocity, as
+//            cuDisc's open boundaries do);
 //   zero:    ghost densities are set to the floor (velocities copied);
 //   closed:  ghost cells copy the adjacent active cell and the solver sets
 //            every flux through that boundary face to zero.
