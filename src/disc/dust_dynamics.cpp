@@ -421,15 +421,20 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
         if (gravity) star.acceleration(R, Z, aR, aZ);
         if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
         // Conserved -> primitive (steps iii, vii). The transported specific momenta
-        // are kept within the range of the 3 x 3 neighbourhood at the source stage:
-        // transport (advection and eq. 16 diffusion) only averages velocities, and
-        // this bound stops round-off in near-empty cells from creating huge
-        // velocities there (which would collapse the time-step).
+        // are kept within the range of the velocities they are made of: the cell's
+        // own at t^n (Q^n) and the 3 x 3 neighbourhood's at the source stage, whose
+        // fluxes are added. Transport (advection and eq. 16 diffusion) only averages
+        // these, and the bound stops round-off in near-empty cells from creating
+        // huge velocities there (which would collapse the time-step). Without the
+        // t^n velocity, the full step (sources at t^{n+1/2}) would lift dust at rest
+        // to the half-step velocity before adding dt a: 1.5 dt a.
         const Real f = dust_floor(floor, floor_ratio, rho_g(i, j));
         const Real rho = math::max(q[kRho], f);
         Real vR, vphi, vZ;
         if (q[kRho] > f) {
-          Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+          const Real inv_n = 1.0 / Q_(i, j, s, kRho);
+          Real lo[3] = {Q_(i, j, s, kMomR) * inv_n, Q_(i, j, s, kAngMom) * inv_n, Q_(i, j, s, kMomZ) * inv_n};
+          Real hi[3] = {lo[0], lo[1], lo[2]};
           for (int a = i - 1; a <= i + 1; ++a)
             for (int c = j - 1; c <= j + 1; ++c) {
               const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};

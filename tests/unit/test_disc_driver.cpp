@@ -144,6 +144,31 @@ TEST(DiscDriver, DustAtRestIsLimitedByTheDisplacementOfItsAcceleration) {
   EXPECT_DOUBLE_EQ(limit.theta, g.tc_h(j));
 }
 
+TEST(DiscDriver, DustAtRestFallsWithItsAccelerationInOneStep) {
+  // Dust at rest without drag (vertical columns, no diffusion): after one step dt its
+  // vertical velocity is a_Z dt = -GM Z / r^3 dt (RBO24 eq. 6; the momentum carried in
+  // by the fluxes is of order (dt Omega)^2 smaller). The bound on transported
+  // velocities must include the cell's own velocity at t^n, or a full step that
+  // starts from the half-step velocities a_Z dt / 2 adds a_Z dt on top (1.5 a_Z dt).
+  const auto deck = make_deck({"driver.evolve_gas=false", "gas.radial_velocity=\"zero\"", "dust.drag=false",
+                               "dust.diffusion=false", "dust.radial_fluxes=false"});
+  disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+                           disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
+  const auto& g = sim.grid();
+  const double GM = sim.gas().config().GM, dt = 0.01 * sim.max_dt();
+  sim.dust().step(dt);
+  auto W = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.dust().W);
+  double worst = 0;
+  for (int i = g.i_begin(); i < g.i_end(); ++i)
+    for (int j = g.j_begin(); j < g.j_end(); ++j) {
+      const double R = g.Rc_h(i), Z = R * std::tan(g.tc_h(j)), r3 = std::pow(R * R + Z * Z, 1.5);
+      for (int s = 0; s < sim.dust().species(); ++s)
+        worst = std::max(worst, std::fabs(W(i, j, s, disc::kVZ) / (-GM * Z / r3 * dt) - 1.0));
+    }
+  std::printf("v_Z / (a_Z dt) - 1 after one step: worst %.3e\n", worst);
+  EXPECT_LT(worst, 1e-3);
+}
+
 TEST(DiscDriver, StepLimitNamesTheFastestDustAndWhereItIs) {
   // One species in one cell given a radial velocity whose CFL step (eq. 18) is a
   // thousandth of the present one: max_dt() and step_limit() both take it, and the
