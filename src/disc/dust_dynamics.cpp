@@ -396,14 +396,16 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
       });
 }
 
-void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const View4& w_out, bool update_q) {
+void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double source_lead, const View4& w_out,
+                                 bool update_q) {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto Q_ = Q, FR = flux_R_, FZ = flux_Z_, B = budget;
   auto V = grid_.V, Zc = grid_.Zc;
   auto Rc = grid_.Rc;
   auto rho_g = gas_.rho, cs2 = gas_.cs2, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
   auto sizes = sizes_;
-  const Real dt = dt_stage, floor = settings_.floor, floor_ratio = settings_.floor_ratio, rho_m = settings_.rho_grain;
+  const Real dt = dt_stage, lead = source_lead, floor = settings_.floor, floor_ratio = settings_.floor_ratio,
+             rho_m = settings_.rho_grain;
   const StellarGravity star = settings_.star;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
@@ -421,20 +423,19 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
         if (gravity) star.acceleration(R, Z, aR, aZ);
         if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
         // Conserved -> primitive (steps iii, vii). The transported specific momenta
-        // are kept within the range of the velocities they are made of: the cell's
-        // own at t^n (Q^n) and the 3 x 3 neighbourhood's at the source stage, whose
-        // fluxes are added. Transport (advection and eq. 16 diffusion) only averages
-        // these, and the bound stops round-off in near-empty cells from creating
-        // huge velocities there (which would collapse the time-step). Without the
-        // t^n velocity, the full step (sources at t^{n+1/2}) would lift dust at rest
-        // to the half-step velocity before adding dt a: 1.5 dt a.
+        // are kept within the range of the 3 x 3 neighbourhood at the source stage:
+        // transport (advection and eq. 16 diffusion) only averages velocities, and
+        // this bound stops round-off in near-empty cells from creating huge
+        // velocities there (which would collapse the time-step). The source-stage
+        // velocities of the full step already hold the half step's sources, which
+        // the momenta carried from t^n do not: the range is widened by that kick,
+        // source_lead |a|, or dust at rest would be lifted to dt a / 2 before the
+        // step's dt a is added (1.5 dt a per step for decoupled dust).
         const Real f = dust_floor(floor, floor_ratio, rho_g(i, j));
         const Real rho = math::max(q[kRho], f);
         Real vR, vphi, vZ;
         if (q[kRho] > f) {
-          const Real inv_n = 1.0 / Q_(i, j, s, kRho);
-          Real lo[3] = {Q_(i, j, s, kMomR) * inv_n, Q_(i, j, s, kAngMom) * inv_n, Q_(i, j, s, kMomZ) * inv_n};
-          Real hi[3] = {lo[0], lo[1], lo[2]};
+          Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
           for (int a = i - 1; a <= i + 1; ++a)
             for (int c = j - 1; c <= j + 1; ++c) {
               const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};
@@ -443,6 +444,11 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, const V
                 hi[k] = math::max(hi[k], v3[k]);
               }
             }
+          const Real kick[3] = {lead * math::fabs(aR), 0, lead * math::fabs(aZ)};
+          for (int k = 0; k < 3; ++k) {
+            lo[k] -= kick[k];
+            hi[k] += kick[k];
+          }
           const Real inv = 1.0 / q[kRho];
           vR = math::min(math::max(q[kMomR] * inv, lo[0]), hi[0]) + dt * aR * rs * inv;
           vphi = math::min(math::max(q[kAngMom] * inv, lo[1]), hi[1]) / R;
@@ -479,12 +485,12 @@ void DustDynamics::step(double dt) {
   // (i) first-order fluxes at t^n; (ii) half-step sources from P^n; (iii, iv) primitives + drag.
   fill_ghosts(W);
   compute_fluxes(W, false);
-  advance_stage(W, 0.5 * dt, W_half_, false);
+  advance_stage(W, 0.5 * dt, 0.0, W_half_, false);
   // Boundary conditions again after step (iv); (v-viii) second-order fluxes at t^{n+1/2}.
   fill_ghosts(W_half_);
   compute_fluxes(W_half_, true);
   account_outflow(dt);
-  advance_stage(W_half_, dt, W, true);
+  advance_stage(W_half_, dt, 0.5 * dt, W, true);
   fill_ghosts(W);
 }
 

@@ -148,8 +148,9 @@ TEST(DiscDriver, DustAtRestFallsWithItsAccelerationInOneStep) {
   // Dust at rest without drag (vertical columns, no diffusion): after one step dt its
   // vertical velocity is a_Z dt = -GM Z / r^3 dt (RBO24 eq. 6; the momentum carried in
   // by the fluxes is of order (dt Omega)^2 smaller). The bound on transported
-  // velocities must include the cell's own velocity at t^n, or a full step that
-  // starts from the half-step velocities a_Z dt / 2 adds a_Z dt on top (1.5 a_Z dt).
+  // velocities (the 3 x 3 range at the source stage) must allow for the half step's
+  // kick that the full step's source-stage velocities hold, or dust at rest is lifted
+  // to a_Z dt / 2 before a_Z dt is added (1.5 a_Z dt).
   const auto deck = make_deck({"driver.evolve_gas=false", "gas.radial_velocity=\"zero\"", "dust.drag=false",
                                "dust.diffusion=false", "dust.radial_fluxes=false"});
   disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),

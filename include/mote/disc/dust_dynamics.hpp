@@ -129,7 +129,10 @@ class DustDynamics {
   /// Limited slopes of w along R (radial = true, cells i in [ng-1, ng+nr]) or
   /// tan(theta) (cells j in [ng-1, ng+nt]) into slope_, once per cell.
   void compute_slopes(const View<Real****>& w, bool radial);
-  void advance_stage(const View<Real****>& w_source, double dt_stage, const View<Real****>& w_out, bool update_q);
+  /// One stage from Q^n and the fluxes of w_source; source_lead is how far ahead of t^n
+  /// w_source's own sources reach (0 in the half step, dt / 2 in the full step).
+  void advance_stage(const View<Real****>& w_source, double dt_stage, double source_lead, const View<Real****>& w_out,
+                     bool update_q);
   /// Adds dt times the mass fluxes through the grid's outer faces to the budget.
   void account_outflow(double dt);
 
