@@ -61,14 +61,15 @@ void for_cells(const std::string& name, int i0, int i1, int j0, int j1, int ns, 
   par_for(name, i0, i1, j0, j1, 0, ns, f);
 }
 
-/// An outflow ghost on a theta side (outward along +theta when `side` = +1, -theta
-/// when -1) holding a copy of its edge cell: if that cell moves into the grid, the
-/// ghost's velocity becomes its mirror image in the face, (sn, cn) the face's
-/// (sin, cos), so the normal component changes sign and the tangential one stays.
+/// A ghost on a theta side (outward along +theta when `side` = +1, -theta when -1)
+/// holding a copy of its edge cell: its velocity becomes its mirror image in the face,
+/// (sn, cn) the face's (sin, cos), so the normal component changes sign and the
+/// tangential one stays; always (`always`, a closed side: a mirror) or only where the
+/// edge cell moves into the grid (an outflow side: nothing flows in).
 template <class W>
-KOKKOS_INLINE_FUNCTION void reflect_inflow(const W& w, int i, int j, int s, Real sn, Real cn, int side) {
+KOKKOS_INLINE_FUNCTION void mirror_ghost(const W& w, int i, int j, int s, Real sn, Real cn, int side, bool always) {
   const Real vn = -w(i, j, s, kVR) * sn + w(i, j, s, kVZ) * cn;
-  if (vn * side >= 0) return;
+  if (!always && vn * side >= 0) return;
   w(i, j, s, kVR) += 2.0 * vn * sn;
   w(i, j, s, kVZ) -= 2.0 * vn * cn;
 }
@@ -230,6 +231,7 @@ void DustDynamics::fill_ghosts(const View4& w) {
     const bool do_in = grid_.has_inner_boundary(), do_out = grid_.has_outer_boundary();
     const bool zero_in = b.inner == mesh::BoundaryKind::Zero, zero_out = b.outer == mesh::BoundaryKind::Zero;
     const bool open_in = b.inner == mesh::BoundaryKind::Outflow, open_out = b.outer == mesh::BoundaryKind::Outflow;
+    const bool shut_in = b.inner == mesh::BoundaryKind::Closed, shut_out = b.outer == mesh::BoundaryKind::Closed;
     par_for(
         "disc::dust_bc_radial", 0, ng, ng, ng + nt, 0, ns, KOKKOS_LAMBDA(int g, int j, int s) {
           for (int k = 0; k < kDustVars; ++k) {
@@ -238,13 +240,14 @@ void DustDynamics::fill_ghosts(const View4& w) {
           }
           if (do_in && zero_in) w(g, j, s, kRho) = floor;
           if (do_out && zero_out) w(ng + nr + g, j, s, kRho) = floor;
-          if (do_in && open_in && w(ng, j, s, kVR) > 0) w(g, j, s, kVR) = -w(ng, j, s, kVR);
-          if (do_out && open_out && w(ng + nr - 1, j, s, kVR) < 0)
+          if (do_in && (shut_in || (open_in && w(ng, j, s, kVR) > 0))) w(g, j, s, kVR) = -w(ng, j, s, kVR);
+          if (do_out && (shut_out || (open_out && w(ng + nr - 1, j, s, kVR) < 0)))
             w(ng + nr + g, j, s, kVR) = -w(ng + nr - 1, j, s, kVR);
         });
   }
   const bool zero_lo = b.lower == mesh::BoundaryKind::Zero, zero_hi = b.upper == mesh::BoundaryKind::Zero;
   const bool open_lo = b.lower == mesh::BoundaryKind::Outflow, open_hi = b.upper == mesh::BoundaryKind::Outflow;
+  const bool shut_lo = b.lower == mesh::BoundaryKind::Closed, shut_hi = b.upper == mesh::BoundaryKind::Closed;
   // The theta faces' normal, (-sin, cos) in (R, Z), as compute_fluxes takes it.
   const bool radial = settings_.radial_fluxes;
   auto sin_te = grid_.sin_te, cos_te = grid_.cos_te;
@@ -256,8 +259,9 @@ void DustDynamics::fill_ghosts(const View4& w) {
         }
         if (zero_lo) w(i, g, s, kRho) = floor;
         if (zero_hi) w(i, ng + nt + g, s, kRho) = floor;
-        if (open_lo) reflect_inflow(w, i, g, s, radial ? sin_te(ng) : Real(0), cos_te(ng), -1);
-        if (open_hi) reflect_inflow(w, i, ng + nt + g, s, radial ? sin_te(ng + nt) : Real(0), cos_te(ng + nt), +1);
+        if (open_lo || shut_lo) mirror_ghost(w, i, g, s, radial ? sin_te(ng) : Real(0), cos_te(ng), -1, shut_lo);
+        if (open_hi || shut_hi)
+          mirror_ghost(w, i, ng + nt + g, s, radial ? sin_te(ng + nt) : Real(0), cos_te(ng + nt), +1, shut_hi);
       });
 }
 
@@ -320,8 +324,15 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           }
         }
         Real f[kDustVars] = {0, 0, 0, 0};
-        const bool closed = !radial || (i == ng && closed_in) || (i == ng + nr && closed_out);
-        if (!closed) {
+        const bool wall = (i == ng && closed_in) || (i == ng + nr && closed_out);
+        if (radial && wall) {
+          // A closed side is a mirror: the edge state moving into it meets its mirror
+          // image, whose Roe average (eq. 11) is zero, so the face carries no mass and
+          // the normal momentum rho v_n^2 (eq. 12, the mean of the two states).
+          const Real* in = i == ng ? qr : ql;
+          const Real vn = in[kVR];
+          if (i == ng ? vn < 0 : vn > 0) f[kMomR] = in[kRho] * vn * vn * AR(i, j);
+        } else if (radial) {
           const Real vl = ql[kVR], vr = qr[kVR];  // normal = R_hat
           const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
           const Real R = Re(i);
@@ -358,11 +369,20 @@ void DustDynamics::compute_fluxes(const View4& w, bool second_order) {
           }
         }
         Real f[kDustVars] = {0, 0, 0, 0};
-        const bool closed = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
-        if (!closed) {
-          // Without radial fluxes the radial velocity is not transported through
-          // the (tilted) theta faces either: only v_Z moves mass along a column.
-          const Real sn = radial ? sin_te(j) : Real(0), cn = cos_te(j);
+        // Without radial fluxes the radial velocity is not transported through
+        // the (tilted) theta faces either: only v_Z moves mass along a column.
+        const Real sn = radial ? sin_te(j) : Real(0), cn = cos_te(j);
+        const bool wall = (j == ng && closed_lo) || (j == ng + nt && closed_hi);
+        if (wall) {
+          // A closed side is a mirror (as the radial faces above): normal momentum only.
+          const Real* in = j == ng ? qr : ql;
+          const Real vn = -in[kVR] * sn + in[kVZ] * cn;
+          if (j == ng ? vn < 0 : vn > 0) {
+            const Real p = in[kRho] * vn * vn * AZ(i, j);
+            f[kMomR] = -p * sn;
+            f[kMomZ] = p * cn;
+          }
+        } else {
           const Real vl = -ql[kVR] * sn + ql[kVZ] * cn, vr = -qr[kVR] * sn + qr[kVZ] * cn;
           const int side = upwind_side(ql[kRho], vl, qr[kRho], vr);
           const Real R = Rc(i);

@@ -3,8 +3,9 @@
 //            nothing flows in (the dust ghost mirrors an inward velocity, as
 //            cuDisc's open boundaries do);
 //   zero:    ghost densities are set to the floor (velocities copied);
-//   closed:  ghost cells copy the adjacent active cell and the solver sets
-//            every flux through that boundary face to zero.
+//   closed:  a mirror: no mass crosses the face (the dust ghost holds the edge
+//            cell with its normal velocity reversed, and dust moving into the
+//            face exchanges normal momentum with its mirror image).
 // The default (RBO24) is closed at theta_min (mid-plane symmetry) and outflow elsewhere.
 #pragma once
 
