@@ -226,7 +226,8 @@ void DustDynamics::fill_ghosts(const View4& w) {
   // Radial sides first (active rows j), then theta sides over all i, which fills the corners.
   // Outflow sides let dust leave and none enter (as cuDisc's open boundaries): where the
   // edge cell moves into the grid, the ghost takes its mirror velocity, so the face flux
-  // is that of two diverging states, zero.
+  // is that of two diverging states, zero. Closed sides are mirrors: the ghost's normal
+  // velocity is always reversed (compute_fluxes gives their faces the mirror's flux).
   if (grid_.has_inner_boundary() || grid_.has_outer_boundary()) {
     const bool do_in = grid_.has_inner_boundary(), do_out = grid_.has_outer_boundary();
     const bool zero_in = b.inner == mesh::BoundaryKind::Zero, zero_out = b.outer == mesh::BoundaryKind::Zero;
