@@ -6,6 +6,7 @@
 #include <KokkosBlas1_dot.hpp>
 #include <KokkosSparse_spmv.hpp>
 #include <algorithm>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -29,6 +30,9 @@ void SolverSettings::validate() const {
   if (!(relative_floor >= 0.0 && relative_floor < 1.0))
     throw std::invalid_argument("linear solver relative_floor must lie in [0, 1), got " +
                                 std::to_string(relative_floor));
+  if (!(l2_guard > 0.0 && std::isfinite(l2_guard)))
+    throw std::invalid_argument("linear solver l2_guard must be a positive factor on the tolerance, got " +
+                                std::to_string(l2_guard));
   if (max_fill_level < 0)
     throw std::invalid_argument("max_fill_level must be >= 0, got " + std::to_string(max_fill_level));
   if (triangular_sweeps < 0)
@@ -58,7 +62,7 @@ std::string SolveReport::summary() const {
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
     out << (i ? "; " : "") << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
-        << " iterations, residual " << a.residual << ", " << a.seconds << " s";
+        << " iterations, residual " << a.residual << " (L2 " << a.l2_residual << "), " << a.seconds << " s";
   }
   return out.str();
 }
@@ -320,6 +324,47 @@ void copy_owned_block(const CrsPattern& full, const CrsMatrix& A, const CrsPatte
 
 bool accepted(const Measures& m, Real tolerance) { return m.residual <= tolerance; }
 
+/// The two scales of the L2 guard for a true residual r = b - A x (x with its
+/// ghost values), summed over the ranks: max(||b||_2, ||A x||_2), and the
+/// round-off bound of evaluating r, ||gamma (|b| + |A| |x|)||_2 with gamma_i
+/// = (entries of row i + 1) x machine epsilon (Higham 2002, eq. 3.11).
+struct L2Scales {
+  Real size = 0.0, roundoff = 0.0;
+  /// ||r||_2 within the guard (a fraction of size) or within round-off.
+  bool hold(Real rr, Real guard) const { return std::sqrt(rr) <= guard * size + roundoff; }
+};
+
+L2Scales l2_scales(const Distribution& d, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b,
+                   const Vector& r, const Vector& x) {
+  const RowMap row_map = pattern.row_map;
+  const Entries entries = pattern.entries;
+  const auto values = A.values;
+  Real bb = 0.0, ax = 0.0, ro = 0.0;
+  par_reduce(
+      "linalg::bicgstab_rhs_norm", 0, pattern.n_rows, KOKKOS_LAMBDA(int i, Real& sum) { sum += b(i) * b(i); }, bb);
+  par_reduce(
+      "linalg::bicgstab_ax_norm", 0, pattern.n_rows,
+      KOKKOS_LAMBDA(int i, Real& sum) { sum += (b(i) - r(i)) * (b(i) - r(i)); }, ax);
+  par_reduce(
+      "linalg::bicgstab_roundoff", 0, pattern.n_rows,
+      KOKKOS_LAMBDA(int i, Real& sum) {
+        Real abs_ax = math::fabs(b(i));
+        for (Offset k = row_map(i); k < row_map(i + 1); ++k) abs_ax += math::fabs(values(k) * x(entries(k)));
+        const Real gamma = (row_map(i + 1) - row_map(i) + 1) * DBL_EPSILON;
+        sum += gamma * gamma * abs_ax * abs_ax;
+      },
+      ro);
+  if (d.distributed()) {
+    bb = d.comm.sum(bb);
+    ax = d.comm.sum(ax);
+    ro = d.comm.sum(ro);
+  }
+  return {std::sqrt(std::max(bb, ax)), std::sqrt(ro)};
+}
+
+/// ||r||_2 / size (0 for r = 0; infinite for r != 0 against a zero size).
+Real l2_fraction(Real rr, Real size) { return rr > 0.0 ? std::sqrt(rr) / size : 0.0; }
+
 }  // namespace
 
 LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSettings settings,
@@ -410,12 +455,21 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   const int n = pattern_.n_rows;
   const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
 
+  // Both measures on the true residual w.r = b - A x; between confirmations
+  // the recursive (r, r) is held to the guard against the last true scale.
+  const Real guard = std::min(1.0, settings_.l2_guard * tol);
+  L2Scales scales;
+  auto confirmed = [&](const Measures& m) {
+    scales = l2_scales(d, pattern_, scaled_, b_scaled_, head(w.r, n), x);
+    out.l2_residual = l2_fraction(m.rr, scales.size);
+    return accepted(m, tol) && scales.hold(m.rr, guard);
+  };
   residual_of(x, w.r);
   restart(w, d);
   Measures m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
   out.history.push_back(m.residual);
   out.residual = m.residual;
-  if (accepted(m, tol)) return finish("converged", true);
+  if (confirmed(m)) return finish("converged", true);
 
   while (out.iterations < settings_.max_iterations) {
     ++out.iterations;
@@ -430,12 +484,12 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
-    if (accepted(m, tol)) {
+    if (accepted(m, tol) && scales.hold(m.rr, guard)) {
       residual_of(x, w.r);
       m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
       out.residual = m.residual;
-      if (accepted(m, tol)) return finish("converged", true);
-      ++out.restarts;  // the recursive residual drifted from b - A x
+      if (confirmed(m)) return finish("converged", true);
+      ++out.restarts;  // the recursive residual drifted from b - A x, or the L2 guard holds it back
       restart(w, d);
       continue;
     }

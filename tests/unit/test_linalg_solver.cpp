@@ -317,6 +317,118 @@ TEST(LinearSolver, ZeroDiagonalsAreSolved) {
   EXPECT_LE(max_fractional_residual(to_dense(solver.matrix()), to_host(x), b), 1e-8);
 }
 
+/// A dense n x n pattern.
+CrsPattern dense_pattern(int n) {
+  return linalg::build_pattern(
+      "test::dense", n, KOKKOS_LAMBDA(int) { return n; },
+      KOKKOS_LAMBDA(int, Ordinal* cols) {
+        for (int k = 0; k < n; ++k) cols[k] = k;
+      });
+}
+
+/// Sets a small dense matrix from the host.
+void set_dense(const LinearSolver& solver, const Dense& A) {
+  auto values = Kokkos::create_mirror_view(solver.matrix().values);
+  const int n = static_cast<int>(A.size());
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) values(r * n + c) = A[r][c];
+  Kokkos::deep_copy(solver.matrix().values, values);
+}
+
+SolverSettings plain_settings(double tolerance) {
+  SolverSettings settings;
+  settings.tolerance = tolerance;
+  settings.preconditioning = {-1};
+  settings.fallback = false;
+  return settings;
+}
+
+/// A = [[1, -1, -1], [-3, 1, 1], [3, -3, 1]], b = (3, 0, 0): the first
+/// iteration has alpha = 1, omega = 1/4, r_1 = (0, 9, 0), exactly orthogonal
+/// to r_hat = b, so (r_hat, r) = 0 with r != 0. The solver restarts its Krylov
+/// space from r_1 and still converges.
+TEST(LinearSolver, ShadowResidualBreakdownRestartsAndConverges) {
+  LinearSolver solver("test::rho0", dense_pattern(3), plain_settings(1e-12));
+  const Dense A{{1, -1, -1}, {-3, 1, 1}, {3, -3, 1}};
+  set_dense(solver, A);
+  const std::vector<double> b{3, 0, 0};
+  const linalg::Vector x("x", 3);
+  const auto report = solver.solve(from_host(b), x);
+  std::cout << "rho -> 0: " << report.summary() << "\n";
+  ASSERT_TRUE(report.converged);
+  EXPECT_GE(report.last().restarts, 1);
+  EXPECT_GT(report.last().history.at(1), 1e-12);  // the first iteration did not converge
+  EXPECT_LE(relative_error(to_host(x), dense_solve(A, b)), 1e-11);
+}
+
+/// A = [[0, 1], [-1, 0]] is skew: (r_hat, A p) = 0 and (A s, s) = 0 exactly,
+/// so omega = 0 at the first iteration; the solve reports it and keeps x.
+TEST(LinearSolver, OmegaBreakdownIsReported) {
+  LinearSolver solver("test::skew2", dense_pattern(2), plain_settings(1e-8));
+  set_dense(solver, Dense{{0, 1}, {-1, 0}});
+  const std::vector<double> guess{0.0, 0.0};
+  const auto x = from_host(guess);
+  try {
+    solver.solve(from_host(std::vector<double>{1.0, 2.0}), x);
+    FAIL() << "omega = 0 was not reported";
+  } catch (const linalg::SolveFailure& failure) {
+    EXPECT_EQ(failure.report().last().stop_reason, "breakdown: omega = 0") << failure.what();
+    EXPECT_EQ(failure.report().last().iterations, 1);
+  }
+  EXPECT_EQ(to_host(x), guess);
+}
+
+/// 1D diffusion with weak absorption, A = tridiag(-1, 2 + 1e-4, -1), and the
+/// parabola x* = t (1 - t), t = (i + 1) / (n + 1): b = A x* is ~1e-4 x*, so
+/// the row measure |r_i| / max(|b_i|, |x_i|) (tolerance 1e-4) is met while
+/// ||r|| is still a third of ||b|| and x is 10 % off. The L2 guard (default:
+/// ||r|| <= 1e-4 ||b||) holds the solve back: the row measure had passed at
+/// an earlier iteration, and x is far closer to x* than with the guard
+/// loosened to ||r|| <= ||b|| (factor 1e4).
+TEST(LinearSolver, L2GuardHoldsBackWhatTheRowMeasureAccepts) {
+  const int n = 400;
+  std::vector<double> exact(n), b(n);
+  for (int i = 0; i < n; ++i) exact[i] = (i + 1.0) / (n + 1) * (1.0 - (i + 1.0) / (n + 1));
+  for (int i = 0; i < n; ++i)
+    b[i] = (2.0 + 1e-4) * exact[i] - (i > 0 ? exact[i - 1] : 0.0) - (i < n - 1 ? exact[i + 1] : 0.0);
+  auto solve_with_guard = [&](double guard, linalg::SolveReport& report) {
+    SolverSettings settings = plain_settings(1e-4);
+    settings.max_iterations = 5000;
+    settings.l2_guard = guard;
+    LinearSolver solver("test::absorbing", tridiagonal_pattern(n), settings);
+    const auto A = solver.matrix();
+    const auto row_map = A.graph.row_map;
+    const auto cols = A.graph.entries;
+    const auto values = A.values;
+    par_for(
+        "test::absorbing_values", 0, n, KOKKOS_LAMBDA(int row) {
+          for (Offset k = row_map(row); k < row_map(row + 1); ++k) values(k) = cols(k) == row ? 2.0 + 1e-4 : -1.0;
+        });
+    const linalg::Vector x("x", n);
+    report = solver.solve(from_host(b), x);
+    const auto xs = to_host(x);
+    double rr = 0.0, bb = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double ax = (2.0 + 1e-4) * xs[i] - (i > 0 ? xs[i - 1] : 0.0) - (i < n - 1 ? xs[i + 1] : 0.0);
+      rr += (b[i] - ax) * (b[i] - ax);
+      bb += b[i] * b[i];
+    }
+    std::printf("guard %g: %s; ||r|| / ||b|| = %.3e, error %.3e\n", guard, report.summary().c_str(), std::sqrt(rr / bb),
+                relative_error(xs, exact));
+    return std::make_pair(std::sqrt(rr / bb), relative_error(xs, exact));
+  };
+  linalg::SolveReport guarded, loose;
+  const auto [l2_guarded, error_guarded] = solve_with_guard(1.0, guarded);
+  const auto [l2_loose, error_loose] = solve_with_guard(1e4, loose);
+  ASSERT_TRUE(guarded.converged);
+  EXPECT_LE(l2_guarded, 1e-4);
+  EXPECT_GT(l2_loose, 1e-2);  // the row measure alone stops far above it
+  EXPECT_NEAR(guarded.last().l2_residual, l2_guarded, 1e-3 * l2_guarded);
+  const auto& history = guarded.last().history;
+  EXPECT_LE(*std::min_element(history.begin(), history.end() - 1), 1e-4);  // the row measure alone had stopped
+  EXPECT_LT(error_guarded, 1e-2 * error_loose);
+}
+
 /// Sets one matrix value to NaN.
 void poison(const LinearSolver& solver, int k) {
   auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), solver.matrix().values);
@@ -362,6 +474,11 @@ TEST(LinearSolver, SettingsAreValidated) {
   SolverSettings swept;
   swept.triangular_sweeps = -1;
   EXPECT_THROW(swept.validate(), std::invalid_argument);
+  for (double guard : {0.0, -1e-2, HUGE_VAL, std::nan("")}) {
+    SolverSettings g;
+    g.l2_guard = guard;
+    EXPECT_THROW(g.validate(), std::invalid_argument) << guard;
+  }
 }
 
 TEST(LinearSolver, LadderOrder) {

@@ -13,7 +13,14 @@
 // solve, checked again on the true residual b - A x before it is accepted. Row
 // scaling leaves it unchanged; rows whose terms cancel (radiative
 // equilibrium, a steady state with b_i = 0) are measured against their
-// diagonal term.
+// diagonal term. The accepted true residual must also pass an L2 guard,
+//   ||r||_2 <= l2_guard x tolerance x max(||b||_2, ||A x||_2) + ||gamma (|b| + |A| |x|)||_2
+// (scaled system; gamma_i = (entries of row i + 1) x machine epsilon, the
+// round-off of evaluating r: a system with b = 0 passes at that level):
+// where A_ii x_i >> b_i (terms that nearly cancel, as in optically thick FLD
+// rows) the row measure alone accepts residuals far above the tolerance
+// relative to b; a solve that meets the row measure but not the guard
+// iterates on.
 //
 // Set up once, solve many: the pattern, work vectors and each ILU level's
 // symbolic factorisation are made once; a solve runs the numeric phases on the
@@ -71,6 +78,8 @@ struct SolverSettings {
   /// measured against that floor (an absolute accuracy for unknowns that are
   /// ~0, e.g. a band far in the Wien tail).
   Real relative_floor = 1e-12;
+  /// The L2 guard on the accepted true residual (see above), a factor on the tolerance (> 0).
+  Real l2_guard = 1.0;
   /// Throws std::invalid_argument naming the bad setting.
   void validate() const;
   /// The rungs tried in order (the configured one first, no repeats).
@@ -85,6 +94,7 @@ struct SolveAttempt {
   int restarts = 0;           // rho -> 0 restarts and true-residual restarts
   int worst_row = -1;         // row of the largest fractional residual when it failed
   Real residual = 0.0;        // final max fractional residual
+  Real l2_residual = 0.0;     // ||r||_2 / max(||b||_2, ||A x||_2) of the last true residual
   std::string stop_reason;    // "converged", "iteration limit", "breakdown: omega = 0", ...
   std::vector<Real> history;  // max fractional residual after each iteration (entry 0: initial)
   double seconds = 0.0;
