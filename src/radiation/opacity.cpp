@@ -250,8 +250,6 @@ OpacityTable interpolate(const OpacityTable& table, const std::vector<double>& s
   return out;
 }
 
-namespace {}  // namespace
-
 std::vector<int> fine_bin_bands(const std::vector<double>& fine_edges_cm, const std::vector<double>& band_edges_cm) {
   const int nl = static_cast<int>(fine_edges_cm.size()) - 1, nb = static_cast<int>(band_edges_cm.size()) - 1;
   if (nb < 1) throw std::invalid_argument("radiation: at least one band is needed");

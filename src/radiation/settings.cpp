@@ -81,6 +81,29 @@ void declare_star_and_opacity(core::DeckSchema& s) {
       .doc("Temperature of the band means with band_means = \"fixed\".");
 }
 
+/// A table file must parse (its reader names the file and line of a fault)
+/// and cover the centres of the first and last stellar bins.
+void check_opacity_table(const core::Deck& d, core::DeckCheck& check, const std::string& file) {
+  OpacityTable table;
+  try {
+    table = d.string("radiation.opacity") == "dsharp" ? read_dsharp_table(file) : read_radmc_dustkappa(file, 1.0);
+  } catch (const std::exception& e) {
+    return check.fail("radiation.opacity_file", e.what());
+  }
+  const auto edges = log_wavelength_edges(d.real("radiation.lambda_min"), d.real("radiation.lambda_max"),
+                                          static_cast<int>(d.integer("radiation.stellar_bins")));
+  const double first = std::sqrt(edges[0] * edges[1]), last = std::sqrt(edges[edges.size() - 2] * edges.back());
+  const double shortest = table.wavelengths_cm.front(), longest = table.wavelengths_cm.back();
+  const auto covered =
+      "the table '" + file + "' covers " + std::to_string(shortest) + " - " + std::to_string(longest) + " cm";
+  if (first < shortest * (1 - 1e-12))
+    check.fail("radiation.lambda_min",
+               "puts the first stellar bin's centre at " + std::to_string(first) + " cm, but " + covered);
+  if (last > longest * (1 + 1e-12))
+    check.fail("radiation.lambda_max",
+               "puts the last stellar bin's centre at " + std::to_string(last) + " cm, but " + covered);
+}
+
 void check_radiation(const core::Deck& d, core::DeckCheck& check) {
   if (!d.has_table("radiation")) return;
   if (d.integer("radiation.bands") > d.integer("radiation.stellar_bins"))
@@ -94,6 +117,8 @@ void check_radiation(const core::Deck& d, core::DeckCheck& check) {
       check.fail("radiation.opacity_file", "is needed for " + check.quote("radiation.opacity"));
     else if (!std::ifstream(file))
       check.fail("radiation.opacity_file", "names a file that cannot be opened: '" + file + "'");
+    else if (d.real("radiation.lambda_max") > d.real("radiation.lambda_min"))
+      check_opacity_table(d, check, file);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "mote/core/deck.hpp"
+#include "mote/radiation/opacity.hpp"
 #include "mote/radiation/settings.hpp"
 
 namespace {
@@ -70,15 +71,31 @@ TEST(RadiationDeck, BadInputNamesTheKey) {
 TEST(RadiationDeck, WavelengthsOutsideTheTableAreRefused) {
   const std::string path = ::testing::TempDir() + "narrow.dat";
   std::ofstream(path) << "1 2\n1e-4 1 1 1\n1e-4 100 1 1\n";  // 1 - 100 um only
-  const auto d =
-      core::Deck::parse("[radiation]\nopacity = \"dsharp\"\nopacity_file = \"" + path + "\"\n", "r.toml", schema());
-  const auto r = radiation::from_deck(d, units::UnitSystem::cgs_units());
+  const std::string deck = "[radiation]\nopacity = \"dsharp\"\nopacity_file = \"" + path + "\"\n";
+  // Refused when the deck is read, before anything is allocated: the stellar
+  // bins' default range 0.1 - 3000 um exceeds the table at both ends.
+  const auto error = error_of(deck);
+  EXPECT_NE(error.find("radiation.lambda_min"), std::string::npos) << error;
+  EXPECT_NE(error.find("radiation.lambda_max"), std::string::npos) << error;
+  EXPECT_NE(error.find("the table '" + path + "' covers"), std::string::npos) << error;
+  // Inside it, accepted.
+  EXPECT_EQ(error_of(deck + "lambda_min = 1e-4\nlambda_max = 1e-2\n"), "");
+  // The interpolation itself refuses wavelengths outside the table too.
+  const auto table = radiation::read_dsharp_table(path);
   try {
-    r.opacities({1e-4});
-    FAIL() << "a wavelength grid outside the table was accepted";
+    radiation::interpolate(table, {1e-4}, {1e-5});
+    FAIL() << "a wavelength outside the table was interpolated";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("lies outside the table"), std::string::npos) << e.what();
   }
+}
+
+TEST(RadiationDeck, MalformedTableIsRefusedWhenTheDeckIsRead) {
+  const std::string path = ::testing::TempDir() + "malformed.dat";
+  std::ofstream(path) << "1 2\n1e-4 1 1 1\n1e-4 100 x 1\n";
+  const auto error = error_of("[radiation]\nopacity = \"dsharp\"\nopacity_file = \"" + path + "\"\n");
+  EXPECT_NE(error.find("radiation.opacity_file"), std::string::npos) << error;
+  EXPECT_NE(error.find(path), std::string::npos) << error;
 }
 
 }  // namespace
