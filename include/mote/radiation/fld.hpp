@@ -98,6 +98,8 @@ class FldSolver {
 
   int bands() const { return nb_; }
   int unknowns() const { return solver_->pattern().n_rows; }
+  /// The sparsity pattern of the system (fixed at construction).
+  const linalg::CrsPattern& pattern() const { return solver_->pattern(); }
   int nonzeros() const { return solver_->pattern().nnz(); }
   /// Non-zeros of the configured ILU factors (L + U).
   int ilu_nonzeros() const { return solver_->factor_nonzeros(settings_.solver.preconditioning.fill_level); }
