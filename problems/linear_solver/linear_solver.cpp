@@ -141,9 +141,20 @@ linalg::Vector smooth_rhs(int n) {
   return b;
 }
 
-/// The FLD patch: kappa^b = 1e-13 (bands - b) (1 + 0.5 j) / (1 + 0.2 i) cm^-1
-/// (absorption = extinction), heating 1e-12 (1 + 0.3 i) exp(-0.2 j) erg cm^-3
-/// s^-1, rho c_V = 1e-9, T = 40 K and E = 1e-9 at the start, dt = 1e6 s.
+/// kappa^b = 1e-13 (bands - b) (1 + 0.5 j) / (1 + 0.2 i) cm^-1 (absorption)
+/// and heating 1e-12 (1 + 0.3 i) exp(-0.2 j) erg cm^-3 s^-1 in cell (i, j).
+void fill_medium(const mesh::Grid& grid, int bands, const radiation::FldFields& fields) {
+  const auto k = fields.absorption;
+  const auto heat = fields.heating;
+  par_for(
+      "linear_solver::fld_medium", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
+        heat(i, j) = 1e-12 * (1.0 + 0.3 * i) * math::exp(-0.2 * j);
+        for (int b = 0; b < bands; ++b) k(i, j, b) = 1e-13 * (bands - b) * (1.0 + 0.5 * j) / (1.0 + 0.2 * i);
+      });
+}
+
+/// The FLD patch: the medium of fill_medium (absorption = extinction), rho c_V
+/// = 1e-9, T = 40 K and E = 1e-9 at the start, dt = 1e6 s.
 class FldPatch {
  public:
   FldPatch(int nr, int ntheta, int bands, const linalg::SolverSettings& solver)
@@ -151,14 +162,7 @@ class FldPatch {
         fld_(grid_, settings(bands, solver), radiation::RadiationConstants::in(units::UnitSystem::cgs_units())),
         fields_(fld_.make_fields()),
         state_(fld_.make_state()) {
-    const auto k = fields_.absorption;
-    const auto heat = fields_.heating;
-    const int nb = bands;
-    par_for(
-        "linear_solver::fld_medium", 0, grid_.nr_total(), 0, grid_.nt_total(), KOKKOS_LAMBDA(int i, int j) {
-          heat(i, j) = 1e-12 * (1.0 + 0.3 * i) * math::exp(-0.2 * j);
-          for (int b = 0; b < nb; ++b) k(i, j, b) = 1e-13 * (nb - b) * (1.0 + 0.5 * j) / (1.0 + 0.2 * i);
-        });
+    fill_medium(grid_, bands, fields_);
     Kokkos::deep_copy(fields_.extinction, fields_.absorption);
     Kokkos::deep_copy(fields_.heat_capacity, 1e-9);
     Kokkos::deep_copy(fields_.scattering_source, 0.0);

@@ -378,6 +378,18 @@ TEST(LinearSolver, OmegaBreakdownIsReported) {
   EXPECT_EQ(to_host(x), guess);
 }
 
+/// tridiag(-1, 2 + 1e-4, -1): 1D diffusion with weak absorption.
+void absorbing_values(const LinearSolver& solver) {
+  const auto A = solver.matrix();
+  const auto row_map = A.graph.row_map;
+  const auto cols = A.graph.entries;
+  const auto values = A.values;
+  par_for(
+      "test::absorbing_values", 0, A.numRows(), KOKKOS_LAMBDA(int row) {
+        for (Offset k = row_map(row); k < row_map(row + 1); ++k) values(k) = cols(k) == row ? 2.0 + 1e-4 : -1.0;
+      });
+}
+
 /// 1D diffusion with weak absorption, A = tridiag(-1, 2 + 1e-4, -1), and the
 /// parabola x* = t (1 - t), t = (i + 1) / (n + 1): b = A x* is ~1e-4 x*, so
 /// the row measure |r_i| / max(|b_i|, |x_i|) (tolerance 1e-4) is met while
@@ -396,14 +408,7 @@ TEST(LinearSolver, L2GuardHoldsBackWhatTheRowMeasureAccepts) {
     settings.max_iterations = 5000;
     settings.l2_guard = guard;
     LinearSolver solver("test::absorbing", tridiagonal_pattern(n), settings);
-    const auto A = solver.matrix();
-    const auto row_map = A.graph.row_map;
-    const auto cols = A.graph.entries;
-    const auto values = A.values;
-    par_for(
-        "test::absorbing_values", 0, n, KOKKOS_LAMBDA(int row) {
-          for (Offset k = row_map(row); k < row_map(row + 1); ++k) values(k) = cols(k) == row ? 2.0 + 1e-4 : -1.0;
-        });
+    absorbing_values(solver);
     const linalg::Vector x("x", n);
     report = solver.solve(from_host(b), x);
     const auto xs = to_host(x);
