@@ -273,7 +273,12 @@ class LinearSolverProblem : public io::Simulation {
     if (kind_ == "fld") {
       FldPatch patch(static_cast<int>(deck_.integer("system.nr")), static_cast<int>(deck_.integer("system.ntheta")),
                      static_cast<int>(deck_.integer("system.bands")), settings);
-      report_ = patch.solve();
+      try {
+        report_ = patch.solve();
+      } catch (const linalg::SolveFailure&) {
+        keep(patch.fld().matrix(), patch.fld().rhs(), patch.fld().solution());
+        throw;
+      }
       keep(patch.fld().matrix(), patch.fld().rhs(), patch.fld().solution());
       return;
     }

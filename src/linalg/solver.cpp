@@ -471,15 +471,10 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   out.residual = m.residual;
   if (confirmed(m)) return finish("converged", true);
 
+  bool guard_held_back = false;  // the last true residual met the row measure but not the L2 guard
   while (out.iterations < settings_.max_iterations) {
     ++out.iterations;
-    search_direction(w);
-    if (ilu) ilu->apply(head(w.p, n), head(p_hat, n));
-    apply_matrix(p_hat, w.v);
-    half_step(w, d);
-    if (ilu) ilu->apply(head(w.s, n), head(s_hat, n));
-    apply_matrix(s_hat, w.t);
-    full_step(w, d, p_hat, s_hat, x);
+    iterate(ilu, p_hat, s_hat, x);
     m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
     out.history.push_back(m.residual);
     out.residual = m.residual;
@@ -489,6 +484,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
       m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
       out.residual = m.residual;
       if (confirmed(m)) return finish("converged", true);
+      guard_held_back = accepted(m, tol);
       ++out.restarts;  // the recursive residual drifted from b - A x, or the L2 guard holds it back
       restart(w, d);
       continue;
@@ -499,7 +495,19 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
       restart(w, d);
     }
   }
-  return finish("iteration limit", false);
+  return finish(guard_held_back ? "iteration limit: the row measure met, the L2 guard not" : "iteration limit", false);
+}
+
+void LinearSolver::iterate(IluFactors* ilu, const Vector& p_hat, const Vector& s_hat, const Vector& x) {
+  Work& w = *work_;
+  const int n = pattern_.n_rows;
+  search_direction(w);
+  if (ilu) ilu->apply(head(w.p, n), head(p_hat, n));
+  apply_matrix(p_hat, w.v);
+  half_step(w, distribution_);
+  if (ilu) ilu->apply(head(w.s, n), head(s_hat, n));
+  apply_matrix(s_hat, w.t);
+  full_step(w, distribution_, p_hat, s_hat, x);
 }
 
 SolveReport LinearSolver::try_solve(const Vector& b, const Vector& x) {
@@ -552,7 +560,7 @@ std::string LinearSolver::failure_message(const SolveReport& report, const RowDe
       << "); the previous solution is kept.";
   for (const auto& a : report.attempts) {
     out << "\n  " << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
-        << " iterations, fractional residual " << a.residual;
+        << " iterations, fractional residual " << a.residual << " (L2 " << a.l2_residual << ")";
     if (a.worst_row >= 0)
       out << " (worst row " << a.worst_row << (describe ? ", " + describe(a.worst_row) : std::string()) << ")";
     const std::size_t shown = std::min<std::size_t>(a.history.size(), 8);

@@ -226,9 +226,12 @@ std::vector<double> interpolate_values(const OpacityTable& t, const std::vector<
 
 void check_inside(const std::vector<double>& table, const std::vector<double>& wanted, const std::string& what) {
   for (double x : wanted)
-    if (x < table.front() * (1 - 1e-12) || x > table.back() * (1 + 1e-12))
-      throw std::invalid_argument("radiation: " + what + " " + std::to_string(x) + " cm lies outside the table (" +
-                                  std::to_string(table.front()) + " - " + std::to_string(table.back()) + " cm)");
+    if (x < table.front() * (1 - 1e-12) || x > table.back() * (1 + 1e-12)) {
+      std::ostringstream out;
+      out << "radiation: " << what << " " << x << " cm lies outside the table (" << table.front() << " - "
+          << table.back() << " cm)";
+      throw std::invalid_argument(out.str());
+    }
 }
 
 std::vector<double> clamp_to(const std::vector<double>& table, std::vector<double> wanted) {

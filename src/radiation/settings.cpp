@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 namespace mote::radiation {
 
@@ -81,13 +82,20 @@ void declare_star_and_opacity(core::DeckSchema& s) {
       .doc("Temperature of the band means with band_means = \"fixed\".");
 }
 
+/// A length in cm as %g would print it.
+std::string cm(double x) {
+  std::ostringstream out;
+  out << x << " cm";
+  return out.str();
+}
+
 /// A table file must parse (its reader names the file and line of a fault)
 /// and cover the centres of the first and last stellar bins.
 void check_opacity_table(const core::Deck& d, core::DeckCheck& check, const std::string& file) {
   OpacityTable table;
   try {
     table = d.string("radiation.opacity") == "dsharp" ? read_dsharp_table(file) : read_radmc_dustkappa(file, 1.0);
-  } catch (const std::exception& e) {
+  } catch (const OpacityFileError& e) {
     return check.fail("radiation.opacity_file", e.what());
   }
   const auto edges = log_wavelength_edges(d.real("radiation.lambda_min"), d.real("radiation.lambda_max"),
@@ -97,11 +105,9 @@ void check_opacity_table(const core::Deck& d, core::DeckCheck& check, const std:
   const auto covered =
       "the table '" + file + "' covers " + std::to_string(shortest) + " - " + std::to_string(longest) + " cm";
   if (first < shortest * (1 - 1e-12))
-    check.fail("radiation.lambda_min",
-               "puts the first stellar bin's centre at " + std::to_string(first) + " cm, but " + covered);
+    check.fail("radiation.lambda_min", "puts the first stellar bin's centre at " + cm(first) + ", but " + covered);
   if (last > longest * (1 + 1e-12))
-    check.fail("radiation.lambda_max",
-               "puts the last stellar bin's centre at " + std::to_string(last) + " cm, but " + covered);
+    check.fail("radiation.lambda_max", "puts the last stellar bin's centre at " + cm(last) + ", but " + covered);
 }
 
 void check_radiation(const core::Deck& d, core::DeckCheck& check) {

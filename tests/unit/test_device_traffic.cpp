@@ -239,10 +239,12 @@ TEST(DeviceTraffic, DiscStepsWithDustGasAndCoagulationCopyAndAllocateNothing) {
 TEST(DeviceTraffic, DiscTemperatureUpdatesReadBackOnlyTheSolverConvergenceMeasures) {
   // A temperature update needs, per BiCGStab iteration, one 40-byte copy of
   // the convergence measures to the host (the iteration is driven from the
-  // host), and two more per solve (initial and true residual). Every other copy is between two device Views of equal
-  // size (the solver's restore point x0, r = b, the previous T and E, T into the gas, Kokkos Kernels' level pointers):
-  // device-internal on a GPU, at most 7 per update. The only allocations are Kokkos Kernels' own work arrays inside the
-  // spiluk numeric phase ("iw", "Host level pointers").
+  // host), and two more per solve (initial and true residual; the L2 guard's
+  // reductions there are not copies). Every other copy is between two device
+  // Views of equal size (the solver's restore point x0, r = b, the previous T
+  // and E, T into the gas, Kokkos Kernels' level pointers): device-internal on
+  // a GPU, at most 7 per update. The only allocations are Kokkos Kernels' own
+  // work arrays inside the spiluk numeric phase ("iw", "Host level pointers").
   const std::string radiation =
       "[coagulation]\nkernel = \"physical\"\n"
       "[radiation]\nbands = 4\nstellar_bins = 20\ntolerance = 1e-8\n"

@@ -14,13 +14,13 @@
 // scaling leaves it unchanged; rows whose terms cancel (radiative
 // equilibrium, a steady state with b_i = 0) are measured against their
 // diagonal term. The accepted true residual must also pass an L2 guard,
-//   ||r||_2 <= l2_guard x tolerance x max(||b||_2, ||A x||_2) + ||gamma (|b| + |A| |x|)||_2
+//   ||r||_2 <= min(1, l2_guard x tolerance) x max(||b||_2, ||A x||_2) + ||gamma (|b| + |A| |x|)||_2
 // (scaled system; gamma_i = (entries of row i + 1) x machine epsilon, the
 // round-off of evaluating r: a system with b = 0 passes at that level):
 // where A_ii x_i >> b_i (terms that nearly cancel, as in optically thick FLD
 // rows) the row measure alone accepts residuals far above the tolerance
 // relative to b; a solve that meets the row measure but not the guard
-// iterates on.
+// iterates on (and stops at the iteration limit with a reason that says so).
 //
 // Set up once, solve many: the pattern, work vectors and each ILU level's
 // symbolic factorisation are made once; a solve runs the numeric phases on the
@@ -165,6 +165,8 @@ class LinearSolver {
 
  private:
   SolveAttempt attempt(const Preconditioning& preconditioning, const Vector& x);
+  /// One BiCGStab iteration on the work vectors (x updated, r recursive).
+  void iterate(IluFactors* ilu, const Vector& p_hat, const Vector& s_hat, const Vector& x);
   IluFactors* factors_for(int fill_level);
   /// r = b - A x with the ghost values of x brought across first.
   void residual_of(const Vector& x, const Vector& r);
