@@ -102,8 +102,7 @@ void check_opacity_table(const core::Deck& d, core::DeckCheck& check, const std:
                                           static_cast<int>(d.integer("radiation.stellar_bins")));
   const double first = std::sqrt(edges[0] * edges[1]), last = std::sqrt(edges[edges.size() - 2] * edges.back());
   const double shortest = table.wavelengths_cm.front(), longest = table.wavelengths_cm.back();
-  const auto covered =
-      "the table '" + file + "' covers " + std::to_string(shortest) + " - " + std::to_string(longest) + " cm";
+  const auto covered = "the table '" + file + "' covers " + cm(shortest) + " - " + cm(longest);
   if (first < shortest * (1 - 1e-12))
     check.fail("radiation.lambda_min", "puts the first stellar bin's centre at " + cm(first) + ", but " + covered);
   if (last > longest * (1 + 1e-12))
