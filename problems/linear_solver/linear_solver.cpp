@@ -22,6 +22,7 @@
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
+#include "mote/linalg/model_systems.hpp"
 #include "mote/linalg/solver.hpp"
 #include "mote/mesh/grid.hpp"
 #include "mote/radiation/fld.hpp"
@@ -29,8 +30,6 @@
 namespace {
 
 using namespace mote;
-using linalg::Offset;
-using linalg::Ordinal;
 
 void declare(core::DeckSchema& s) {
   s.table("system", "The linear system of VALIDATION D1.");
@@ -72,66 +71,6 @@ linalg::SolverSettings solver_settings(const core::Deck& d) {
   s.fallback = d.boolean("linear_solver.fallback");
   s.max_fill_level = static_cast<int>(d.integer("linear_solver.max_fill_level"));
   return s;
-}
-
-/// The 5-point pattern on an n x n grid, row = i + n j.
-linalg::CrsPattern five_point_pattern(int n) {
-  return linalg::build_pattern(
-      "linear_solver::five_point", n * n,
-      KOKKOS_LAMBDA(int row) {
-        const int i = row % n, j = row / n;
-        return 1 + (i > 0) + (i < n - 1) + (j > 0) + (j < n - 1);
-      },
-      KOKKOS_LAMBDA(int row, Ordinal* cols) {
-        const int i = row % n, j = row / n;
-        int k = 0;
-        if (j > 0) cols[k++] = row - n;
-        if (i > 0) cols[k++] = row - 1;
-        cols[k++] = row;
-        if (i < n - 1) cols[k++] = row + 1;
-        if (j < n - 1) cols[k++] = row + n;
-      });
-}
-
-void convection_diffusion_values(const linalg::CrsMatrix& A, int n, double cx, double cy) {
-  const auto row_map = A.graph.row_map;
-  const auto cols = A.graph.entries;
-  const auto values = A.values;
-  const double h = 1.0 / (n + 1);
-  par_for(
-      "linear_solver::convection_diffusion", 0, n * n, KOKKOS_LAMBDA(int row) {
-        for (Offset k = row_map(row); k < row_map(row + 1); ++k) {
-          const int c = cols(k);
-          Real a = 4.0 / (h * h);
-          if (c == row - 1) a = -1.0 / (h * h) - cx / (2 * h);
-          if (c == row + 1) a = -1.0 / (h * h) + cx / (2 * h);
-          if (c == row - n) a = -1.0 / (h * h) - cy / (2 * h);
-          if (c == row + n) a = -1.0 / (h * h) + cy / (2 * h);
-          values(k) = a;
-        }
-      });
-}
-
-linalg::CrsPattern tridiagonal_pattern(int n) {
-  return linalg::build_pattern(
-      "linear_solver::tridiagonal", n, KOKKOS_LAMBDA(int row) { return 1 + (row > 0) + (row < n - 1); },
-      KOKKOS_LAMBDA(int row, Ordinal* cols) {
-        int k = 0;
-        if (row > 0) cols[k++] = row - 1;
-        cols[k++] = row;
-        if (row < n - 1) cols[k++] = row + 1;
-      });
-}
-
-void near_skew_values(const linalg::CrsMatrix& A, double diagonal) {
-  const auto row_map = A.graph.row_map;
-  const auto cols = A.graph.entries;
-  const auto values = A.values;
-  par_for(
-      "linear_solver::near_skew", 0, A.numRows(), KOKKOS_LAMBDA(int row) {
-        for (Offset k = row_map(row); k < row_map(row + 1); ++k)
-          values(k) = cols(k) == row ? diagonal : (cols(k) < row ? -1.0 : 1.0);
-      });
 }
 
 linalg::Vector smooth_rhs(int n) {
@@ -284,12 +223,13 @@ class LinearSolverProblem : public io::Simulation {
     }
     const int n = static_cast<int>(deck_.integer("system.n"));
     const bool cd = kind_ == "convection_diffusion";
-    linalg::LinearSolver solver("linear_solver", cd ? five_point_pattern(n) : tridiagonal_pattern(n), settings);
+    linalg::LinearSolver solver("linear_solver", cd ? linalg::five_point_pattern(n) : linalg::tridiagonal_pattern(n),
+                                settings);
     if (cd) {
       const auto c = deck_.real_array("system.velocity");
-      convection_diffusion_values(solver.matrix(), n, c[0], c[1]);
+      linalg::convection_diffusion_values(solver.matrix(), n, c[0], c[1]);
     } else {
-      near_skew_values(solver.matrix(), deck_.real("system.diagonal"));
+      linalg::near_skew_values(solver.matrix(), deck_.real("system.diagonal"));
     }
     const auto b = smooth_rhs(solver.pattern().n_rows);
     const linalg::Vector x("linear_solver::x", solver.pattern().n_rows);

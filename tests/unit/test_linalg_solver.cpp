@@ -18,6 +18,7 @@
 #include "dense_reference.hpp"
 #include "mote/linalg/crs_pattern.hpp"
 #include "mote/linalg/ilu.hpp"
+#include "mote/linalg/model_systems.hpp"
 #include "mote/linalg/solver.hpp"
 // After mote's headers: Kokkos Kernels' spiluk header needs Kokkos_Core first.
 // clang-format off
@@ -27,55 +28,18 @@
 namespace {
 
 using namespace mote;
+using linalg::convection_diffusion_values;
 using linalg::CrsPattern;
+using linalg::five_point_pattern;
 using linalg::LinearSolver;
+using linalg::near_skew_values;
 using linalg::Offset;
 using linalg::Ordinal;
 using linalg::SolverSettings;
+using linalg::tridiagonal_pattern;
 using test::Dense;
 using test::dense_solve;
 using test::to_dense;
-
-/// Pattern of the 5-point stencil on an n x n grid, row = i + n j.
-CrsPattern five_point_pattern(int n) {
-  return linalg::build_pattern(
-      "test::five_point", n * n,
-      KOKKOS_LAMBDA(int row) {
-        const int i = row % n, j = row / n;
-        return 1 + (i > 0) + (i < n - 1) + (j > 0) + (j < n - 1);
-      },
-      KOKKOS_LAMBDA(int row, Ordinal* cols) {
-        const int i = row % n, j = row / n;
-        int k = 0;
-        if (j > 0) cols[k++] = row - n;
-        if (i > 0) cols[k++] = row - 1;
-        cols[k++] = row;
-        if (i < n - 1) cols[k++] = row + 1;
-        if (j < n - 1) cols[k++] = row + n;
-      });
-}
-
-/// -Laplace(u) + c . grad(u) on the unit square (Dirichlet, h = 1 / (n + 1)),
-/// times `scale`.
-void convection_diffusion_values(const LinearSolver& solver, int n, double cx, double cy, double scale) {
-  const auto A = solver.matrix();
-  const auto row_map = A.graph.row_map;
-  const auto cols = A.graph.entries;
-  const auto values = A.values;
-  const double h = 1.0 / (n + 1);
-  par_for(
-      "test::convection_diffusion", 0, n * n, KOKKOS_LAMBDA(int row) {
-        for (Offset k = row_map(row); k < row_map(row + 1); ++k) {
-          const int c = cols(k);
-          double a = 4.0 / (h * h);
-          if (c == row - 1) a = -1.0 / (h * h) - cx / (2 * h);
-          if (c == row + 1) a = -1.0 / (h * h) + cx / (2 * h);
-          if (c == row - n) a = -1.0 / (h * h) - cy / (2 * h);
-          if (c == row + n) a = -1.0 / (h * h) + cy / (2 * h);
-          values(k) = scale * a;
-        }
-      });
-}
 
 std::vector<double> to_host(const linalg::Vector& v) {
   auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), v);
@@ -132,7 +96,7 @@ TEST_P(ConvectionDiffusion, MatchesDirectSolveWithinTenTimesTolerance) {
   settings.preconditioning = {fill_level};
   settings.fallback = false;
   LinearSolver solver("test::cd", five_point_pattern(n), settings);
-  convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 20.0, -10.0, 1.0);
   const auto b = rhs(n * n);
   const auto A = to_dense(solver.matrix());
   const auto x_direct = dense_solve(A, b);
@@ -164,7 +128,7 @@ TEST(LinearSolver, IluCutsIterationsAndHigherFillCutsMore) {
     settings.preconditioning = {k};
     settings.fallback = false;
     LinearSolver solver("test::cd", five_point_pattern(n), settings);
-    convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+    convection_diffusion_values(solver.matrix(), n, 20.0, -10.0, 1.0);
     const linalg::Vector x("x", n * n);
     iterations.push_back(solver.solve(from_host(rhs(n * n)), x).last().iterations);
   }
@@ -180,10 +144,10 @@ TEST(LinearSolver, SetUpOnceSolveManyWithNewValues) {
   settings.tolerance = 1e-9;
   LinearSolver solver("test::cd", five_point_pattern(n), settings);
   const auto b = from_host(rhs(n * n));
-  convection_diffusion_values(solver, n, 5.0, 5.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 5.0, 5.0, 1.0);
   const linalg::Vector x1("x1", n * n), x2("x2", n * n);
   solver.solve(b, x1);
-  convection_diffusion_values(solver, n, 5.0, 5.0, 4.0);  // A -> 4 A: x -> x / 4
+  convection_diffusion_values(solver.matrix(), n, 5.0, 5.0, 4.0);  // A -> 4 A: x -> x / 4
   const auto report = solver.solve(b, x2);
   const auto h1 = to_host(x1), h2 = to_host(x2);
   double worst = 0.0;
@@ -196,7 +160,7 @@ TEST(LinearSolver, ExactInitialGuessTakesNoIteration) {
   SolverSettings settings;
   settings.tolerance = 1e-6;
   LinearSolver solver("test::cd", five_point_pattern(n), settings);
-  convection_diffusion_values(solver, n, 0.0, 0.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 0.0, 0.0, 1.0);
   const auto A = to_dense(solver.matrix());
   const auto b = rhs(n * n);
   const auto x = from_host(dense_solve(A, b));
@@ -205,32 +169,10 @@ TEST(LinearSolver, ExactInitialGuessTakesNoIteration) {
   EXPECT_EQ(report.last().iterations, 0);
 }
 
-/// Tridiagonal with diagonal eps and off-diagonals -1 (left), +1 (right):
-/// nearly skew-symmetric, so (t, s) ~ eps |s|^2 and unpreconditioned BiCGStab
-/// stalls; ILU(0) of a tridiagonal matrix is its exact LU factorisation.
-CrsPattern tridiagonal_pattern(int n) {
-  return linalg::build_pattern(
-      "test::tridiagonal", n, KOKKOS_LAMBDA(int row) { return 1 + (row > 0) + (row < n - 1); },
-      KOKKOS_LAMBDA(int row, Ordinal* cols) {
-        int k = 0;
-        if (row > 0) cols[k++] = row - 1;
-        cols[k++] = row;
-        if (row < n - 1) cols[k++] = row + 1;
-      });
-}
-
-void near_skew_values(const LinearSolver& solver, double eps) {
-  const auto A = solver.matrix();
-  const auto row_map = A.graph.row_map;
-  const auto cols = A.graph.entries;
-  const auto values = A.values;
-  par_for(
-      "test::near_skew", 0, A.numRows(), KOKKOS_LAMBDA(int row) {
-        for (Offset k = row_map(row); k < row_map(row + 1); ++k)
-          values(k) = cols(k) == row ? eps : (cols(k) < row ? -1.0 : 1.0);
-      });
-}
-
+/// Settings for near_skew_values with diagonal eps, off-diagonals -1 (left)
+/// and +1 (right): nearly skew-symmetric, so (t, s) ~ eps |s|^2 and
+/// unpreconditioned BiCGStab stalls; ILU(0) of a tridiagonal matrix is its
+/// exact LU factorisation.
 SolverSettings near_skew_settings(bool fallback) {
   SolverSettings settings;
   settings.tolerance = 1e-6;
@@ -243,7 +185,7 @@ SolverSettings near_skew_settings(bool fallback) {
 TEST(LinearSolver, FallbackLadderSolvesWhatPlainBicgstabCannot) {
   const int n = 400;
   LinearSolver solver("test::skew", tridiagonal_pattern(n), near_skew_settings(true));
-  near_skew_values(solver, 1e-3);
+  near_skew_values(solver.matrix(), 1e-3);
   const auto b = rhs(n);
   const auto A = to_dense(solver.matrix());
   const linalg::Vector x("x", n);
@@ -261,7 +203,7 @@ TEST(LinearSolver, FallbackLadderSolvesWhatPlainBicgstabCannot) {
 TEST(LinearSolver, FailureKeepsTheInitialGuessAndNamesTheRow) {
   const int n = 400;
   LinearSolver solver("test::skew", tridiagonal_pattern(n), near_skew_settings(false));
-  near_skew_values(solver, 1e-3);
+  near_skew_values(solver.matrix(), 1e-3);
   const std::vector<double> guess(n, 0.25);
   const auto x = from_host(guess);
   try {
@@ -445,7 +387,7 @@ void poison(const LinearSolver& solver, int k) {
 TEST(LinearSolver, NonFiniteMatrixIsRefusedBeforeIterating) {
   const int n = 10;
   LinearSolver solver("test::cd", five_point_pattern(n), SolverSettings{});
-  convection_diffusion_values(solver, n, 1.0, 1.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 1.0, 1.0, 1.0);
   poison(solver, 40);
   const std::vector<double> guess(n * n, 1.0);
   const auto x = from_host(guess);
@@ -551,7 +493,7 @@ TEST(IluFactors, NumericPhaseIsSpiluksBitForBitOnHostsAndToRoundingOnGpus) {
   const int n = 12;
   const auto pattern = five_point_pattern(n);
   LinearSolver solver("test::ilu", pattern, SolverSettings{});
-  convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 20.0, -10.0, 1.0);
   const auto& A = solver.matrix();
   for (int fill = 0; fill <= 2; ++fill) {
     linalg::IluFactors ours("test::ours", pattern, fill);
@@ -612,7 +554,7 @@ TEST(IluFactors, SweepsReachTheExactSolvesAtTheLongestChain) {
   const int n = 12;
   const auto pattern = five_point_pattern(n);
   LinearSolver solver("test::ilu_sweeps", pattern, SolverSettings{});
-  convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+  convection_diffusion_values(solver.matrix(), n, 20.0, -10.0, 1.0);
   const auto y = from_host(rhs(n * n));
   for (int fill = 0; fill <= 1; ++fill) {
     linalg::IluFactors exact("test::exact", pattern, fill);
@@ -651,7 +593,7 @@ TEST(LinearSolver, JacobiSweptIluConvergesToTheDirectSolve) {
     settings.fallback = false;
     settings.triangular_sweeps = sweeps;
     LinearSolver solver("test::cd_sweeps", five_point_pattern(n), settings);
-    convection_diffusion_values(solver, n, 20.0, -10.0, 1.0);
+    convection_diffusion_values(solver.matrix(), n, 20.0, -10.0, 1.0);
     const auto A = to_dense(solver.matrix());
     const linalg::Vector x("x", n * n);
     const auto report = solver.solve(from_host(b), x);
