@@ -7,9 +7,9 @@ usage: pinte_check.py EXE WORKDIR ci|full
 ci:   pinte_low.toml on a 60 x 40 grid (10 inner cells) with its 20 bands:
       energy balance, dust mass, the optically thin top row; pinte_high.toml's
       dust mass at set-up (t_end = 0).
-full: both decks at their resolution and at 1.5x it (RBO24's grids): every
-      check of check.py with --compare, and the figure in the style of RBO24
-      Fig. 9 (WORKDIR/pinte.png).
+full: both decks at their resolution and at 1.5x it, two runs at a time:
+      every check of check.py with --compare, and the figure in the style of
+      RBO24 Fig. 9 (WORKDIR/pinte.png).
 """
 import os
 import shutil
@@ -40,6 +40,15 @@ def deck(name):
     """The deck and its opacity table, wherever ctest runs."""
     return [os.path.join(PROBLEM, f"pinte_{name}.toml"),
             "radiation.opacity_file=" + os.path.join(PROBLEM, "pinte_opacities.dat")]
+
+
+def run_together(commands):
+    """Runs the commands at once and waits for all; raises if any exits non-zero."""
+    procs = [subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True) for cmd in commands]
+    for cmd, p in zip(commands, procs):
+        out = p.communicate()[0]
+        if p.returncode != 0:
+            raise AssertionError(f"{' '.join(cmd)} exited {p.returncode}\n{out[-3000:]}")
 
 
 def check_run(name, run_dir, fine_dir=None, ci_thin=None):
@@ -77,13 +86,12 @@ if mode == "ci":
     checks.check(abs(mass / MASSES["high"] - 1.0) <= passive.MASS,
                  f"high: dust mass at set-up {mass:.4e} M_earth against 10 (|ratio - 1| <= {passive.MASS:g})")
 else:
-    runs = {}
-    for name in ("low", "high"):
-        base, fine = fresh(name), fresh(f"{name}_fine")
-        run([exe, *deck(name), f"output.dir={base}"])
-        run([exe, *deck(name), f"output.dir={fine}"] + FINE[name])
+    runs = {name: (fresh(name), fresh(f"{name}_fine")) for name in ("low", "high")}
+    # Two at a time (each run is one process on one core): the two decks, then their 1.5x grids.
+    run_together([[exe, *deck(name), f"output.dir={runs[name][0]}"] for name in runs])
+    run_together([[exe, *deck(name), f"output.dir={runs[name][1]}"] + FINE[name] for name in runs])
+    for name, (base, fine) in runs.items():
         check_run(name, base, fine)
-        runs[name] = (base, fine)
     subprocess.run([sys.executable, os.path.join(PROBLEM, "plot_pinte.py"), runs["low"][0], runs["high"][0], "--fine",
                     runs["low"][1], runs["high"][1], "--out", os.path.join(work, "pinte.png")], check=True)
 sys.exit(checks.finish())
