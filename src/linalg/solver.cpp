@@ -455,8 +455,9 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   const int n = pattern_.n_rows;
   const Vector p_hat = ilu ? w.p_hat : w.p, s_hat = ilu ? w.s_hat : w.s;
 
-  // Both measures on the true residual w.r = b - A x; between confirmations
-  // the recursive (r, r) is held to the guard against the last true scale.
+  // Both measures on the true residual w.r = b - A x. Between confirmations
+  // the recursive (r, r) is held to the guard's scales, refreshed at the
+  // current x whenever the row measure holds but the guard does not.
   const Real guard = std::min(1.0, settings_.l2_guard * tol);
   L2Scales scales;
   auto confirmed = [&](const Measures& m) {
@@ -479,6 +480,8 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
+    if (accepted(m, tol) && !scales.hold(m.rr, guard))
+      scales = l2_scales(d, pattern_, scaled_, b_scaled_, head(w.r, n), x);
     if (accepted(m, tol) && scales.hold(m.rr, guard)) {
       residual_of(x, w.r);
       m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
