@@ -20,9 +20,15 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
     --trap-cells cells of the mid-plane gas pressure maximum (rho_g c_s^2);
   * fragmentation-limited growth: in every cell of the trap (Sigma_d above
     half its peak) the size at the peak of sigma_d(m) lies within a factor
-    --frag-factor of the Birnstiel et al. (2012) fragmentation limit
-        a_frag = f_f (2 / 3 pi) Sigma_g v_frag^2 / (rho_m alpha c_s^2), f_f = 0.37,
-    with the local mid-plane c_s; for v_frag >= 1000 cm/s also the drift limit
+    --frag-factor of the fragmentation barrier of Birnstiel et al. (2012),
+        a_frag = (2 / 3 pi) Sigma_g v_frag^2 / (rho_m alpha c_s^2)
+    (St = v_frag^2 / (3 alpha c_s^2)), with the local mid-plane c_s. BKE12's
+    two-population model multiplies it by f_f = 0.37, a size fitted for that
+    model, which is printed too; a full Smoluchowski steady state peaks at the
+    barrier itself: E3 (problems/coag_steady_state, DustPy's Fig. 10 case)
+    peaks at 0.985 a_frag with 200 species and 0.977 with 23. For
+    v_frag >= 1000 cm/s also the drift limit (with BKE12's f_d, not measured
+    against a full run here)
         a_drift = f_d (2 Sigma_d / pi rho_m) (v_K / c_s)^2 |dln P / dln R|^-1, f_d = 0.55,
     outside the trap, where a_drift < a_frag: peak within the same factor of
     min(a_frag, a_drift);
@@ -59,7 +65,7 @@ import mote  # noqa: E402
 from mote.verdict import Verdict  # noqa: E402
 
 YEAR_S = 3.15576e7
-F_FRAG, F_DRIFT = 0.37, 0.55  # Birnstiel, Klahr & Ercolano (2012), eq. 8 and 18
+F_FRAG, F_DRIFT = 0.37, 0.55  # Birnstiel, Klahr & Ercolano (2012), two-population fits (eq. 8 and 18)
 
 
 class Disc:
@@ -99,7 +105,8 @@ class Disc:
         return self.rho_g[:, 0] * self.cs2[:, 0]
 
     def a_frag(self):
-        return F_FRAG * 2.0 / (3.0 * np.pi) * self.Sigma_g * self.v_frag**2 / (self.rho_m * self.alpha * self.cs2[:, 0])
+        """The fragmentation barrier, St = v_frag^2 / (3 alpha c_s^2) (BKE12 eq. 8 without f_f)."""
+        return 2.0 / (3.0 * np.pi) * self.Sigma_g * self.v_frag**2 / (self.rho_m * self.alpha * self.cs2[:, 0])
 
     def a_drift(self):
         P = self.pressure_mid()
@@ -155,6 +162,8 @@ def check_growth_limits(v, d, factor):
     v.check(np.all(np.abs(np.log(ratio)) <= np.log(factor)),
             f"fragmentation limit: in the {len(trap)} trap cells the sigma_d(m) peak / a_frag lies in "
             f"[{ratio.min():.3g}, {ratio.max():.3g}] (worst {worst:.3g}; within a factor {factor:g})")
+    v.info(f"fragmentation limit: peak / (f_f a_frag), BKE12's two-population size (f_f = {F_FRAG:g}), lies in "
+           f"[{ratio.min() / F_FRAG:.3g}, {ratio.max() / F_FRAG:.3g}]")
     if d.v_frag >= 1000:
         outside = np.setdiff1d(np.nonzero(ad < af)[0], trap)
         if len(outside) == 0:
@@ -257,7 +266,8 @@ def plot(d, out, radius):
 
     fig, ax = plt.subplots(figsize=(5, 3.6))
     ax.loglog(d.a, d.sigma_m[:, i], "o-", ms=3)
-    ax.axvline(d.a_frag()[i], ls="--", c="k", label="a_frag (BKE12)")
+    ax.axvline(d.a_frag()[i], ls="--", c="k", label="a_frag (BKE12 barrier)")
+    ax.axvline(F_FRAG * d.a_frag()[i], ls=":", c="k", label=f"f_f a_frag (f_f = {F_FRAG:g})")
     ax.set(xlabel="a [cm]", ylabel="sigma_d(m) [g cm^-2]", title=f"Fig. 14: {d.R[i] / au:.2f} au, " + title)
     ax.set_ylim(d.sigma_m[:, i].max() * 1e-6, d.sigma_m[:, i].max() * 3)
     ax.legend()
@@ -270,7 +280,8 @@ def plot(d, out, radius):
     m = ax.pcolormesh(d.R / au, d.a, np.log10(np.maximum(d.sigma_m, 1e-300)), shading="auto", vmin=top - 6,
                       vmax=top)
     fig.colorbar(m, ax=ax, label="log10 sigma_d(m) [g cm^-2]")
-    ax.plot(d.R / au, d.a_frag(), "w-", label="fragmentation limit")
+    ax.plot(d.R / au, d.a_frag(), "w-", label="fragmentation barrier")
+    ax.plot(d.R / au, F_FRAG * d.a_frag(), "w:", label=f"x f_f = {F_FRAG:g}")
     ax.plot(d.R / au, d.a_drift(), "w--", label="drift limit")
     ax.set(xscale="log", yscale="log", xlabel="R [au]", ylabel="a [cm]", ylim=(d.a[0], d.a[-1]),
            title=("Fig. 19: " if d.v_frag >= 1000 else "Fig. 15: ") + title)
