@@ -90,6 +90,18 @@ RealView2 slope_geometry(const std::string& name, const RealView1& xc, const Rea
   return g;
 }
 
+/// Stellar gravity (g_R, g_Z) at every cell centre, ghosts included (a free
+/// function for the same reason).
+RealView3 cell_gravity(const mesh::Grid& grid, const StellarGravity& star) {
+  RealView3 g("dust::gravity", grid.nr_total(), grid.nt_total(), 2);
+  auto Rc = grid.Rc;
+  auto Zc = grid.Zc;
+  par_for(
+      "disc::dust_cell_gravity", 0, grid.nr_total(), 0, grid.nt_total(),
+      KOKKOS_LAMBDA(int i, int j) { star.acceleration(Rc(i), Zc(i, j), g(i, j, 0), g(i, j, 1)); });
+  return g;
+}
+
 }  // namespace
 
 void DustSettings::declare(core::DeckSchema& s) {
@@ -169,6 +181,8 @@ DustDynamics::DustDynamics(const mesh::Grid& grid, DustSettings settings)
   gas_D_ = RealView2("dust::gas_D", NI, NJ);
   inv_rho_g_ = RealView2("dust::inv_rho_g", NI, NJ);
   Kokkos::deep_copy(inv_rho_g_, 1.0);
+  gravity_ = cell_gravity(grid, settings_.star);
+  stopping_time_ = View<Real***>("dust::stopping_time", NI, NJ, ns_);
   slope_R_ = slope_geometry("disc::dust_slope_geometry_R", grid.Rc, grid.Re);
   slope_Z_ = slope_geometry("disc::dust_slope_geometry_Z", grid.tan_tc, grid.tan_te);
   schmidt_ = RealView1("dust::schmidt", ns_);
@@ -195,6 +209,14 @@ void DustDynamics::set_gas(const GasFields& gas) {
         inv_rho(i, j) = 1.0 / rho(i, j);
       });
   mesh::update_diffusion_coefficients(grid_, gas_D_, diffusion_);
+  auto ts = stopping_time_;
+  auto cs2 = gas.cs2;
+  auto sizes = sizes_;
+  const Real rho_m = settings_.rho_grain;
+  for_cells(
+      "disc::dust_stopping_times", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
+        ts(i, j, s) = dust::epstein_stopping_time(rho_m, sizes(s), rho(i, j), math::sqrt(cs2(i, j)));
+      });
 }
 
 void DustDynamics::initialise_from_primitives() {
@@ -421,13 +443,12 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
                                  bool update_q) {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto Q_ = Q, FR = flux_R_, FZ = flux_Z_, B = budget;
-  auto V = grid_.V, Zc = grid_.Zc;
+  auto V = grid_.V;
   auto Rc = grid_.Rc;
-  auto rho_g = gas_.rho, cs2 = gas_.cs2, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
-  auto sizes = sizes_;
-  const Real dt = dt_stage, lead = source_lead, floor = settings_.floor, floor_ratio = settings_.floor_ratio,
-             rho_m = settings_.rho_grain;
-  const StellarGravity star = settings_.star;
+  auto rho_g = gas_.rho, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
+  auto grav = gravity_;
+  auto stopping_time = stopping_time_;
+  const Real dt = dt_stage, lead = source_lead, floor = settings_.floor, floor_ratio = settings_.floor_ratio;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
   for_cells(
@@ -438,10 +459,13 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
         for (int k = 0; k < kDustVars; ++k)
           q[k] = Q_(i, j, s, k) - inv_v * (FR(i + 1, j, s, k) - FR(i, j, s, k) + FZ(i, j + 1, s, k) - FZ(i, j, s, k));
         // Explicit sources (eq. 6) evaluated with the source-stage primitives.
-        const Real R = Rc(i), Z = Zc(i, j);
+        const Real R = Rc(i);
         const Real rs = w_source(i, j, s, kRho);
         Real aR = 0, aZ = 0;
-        if (gravity) star.acceleration(R, Z, aR, aZ);
+        if (gravity) {
+          aR = grav(i, j, 0);
+          aZ = grav(i, j, 1);
+        }
         if (curvature) aR += math::square(w_source(i, j, s, kVphi)) / R;
         // Conserved -> primitive (steps iii, vii). The transported specific momenta
         // are kept within the range of the 3 x 3 neighbourhood at the source stage:
@@ -483,7 +507,7 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
           vZ = vgZ(i, j);
         }
         if (drag) {
-          const Real ts = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
+          const Real ts = stopping_time(i, j, s);
           vR = dust::implicit_drag(vR, vgR(i, j), dt, ts);
           vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
           vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
@@ -522,10 +546,10 @@ namespace {
 struct CellStepLimit {
   using Kind = DustDynamics::StepLimit::Kind;
   View4 W;
-  RealView1 dR, Rc, tan_te, sc, sizes;
-  RealView2 Zc, nu, rho_g, cs2;
-  StellarGravity star;
-  Real rho_m, ca, cd, floor, floor_ratio;
+  RealView1 dR, Rc, tan_te, sc;
+  RealView2 nu, rho_g;
+  RealView3 g, stopping_time;
+  Real ca, cd, floor, floor_ratio;
   bool drag, diffuse, radial, gravity, curvature;
 
   KOKKOS_INLINE_FUNCTION static void keep(Real t, int k, Real& m, int& kind) {
@@ -554,13 +578,11 @@ struct CellStepLimit {
       // rest or decoupled): a step moves the dust by about a dt min(dt, t_s), the
       // implicit drag capping its velocity at the terminal a t_s; this stays below
       // C_adv of a cell.
-      Real aR, aZ;
-      star.acceleration(Rc(i), Zc(i, j), aR, aZ);
+      Real aR = g(i, j, 0), aZ = g(i, j, 1);
       if (curvature) aR += math::square(W(i, j, s, kVphi)) / Rc(i);
       aR = math::fabs(aR);
       aZ = math::fabs(aZ);
-      const Real ts =
-          drag ? dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j))) : Real(1e300);
+      const Real ts = drag ? stopping_time(i, j, s) : Real(1e300);
       if (radial && aR > 0) keep(source_step_limit(ca, dR(i), aR, ts), Kind::kSourceR, m, kind);
       if (aZ > 0) keep(source_step_limit(ca, dZ, aZ, ts), Kind::kSourceZ, m, kind);
     }
@@ -569,19 +591,16 @@ struct CellStepLimit {
 };
 
 CellStepLimit cell_step_limit(const mesh::Grid& grid, const DustSettings& st, const View4& W, const GasFields& gas,
-                              const RealView1& schmidt, const RealView1& sizes) {
+                              const RealView1& schmidt, const RealView3& gravity, const RealView3& stopping_time) {
   return {W,
           grid.dR,
           grid.Rc,
           grid.tan_te,
           schmidt,
-          sizes,
-          grid.Zc,
           gas.nu,
           gas.rho,
-          gas.cs2,
-          st.star,
-          st.rho_grain,
+          gravity,
+          stopping_time,
           st.cfl_advection,
           st.cfl_diffusion,
           st.floor,
@@ -597,7 +616,7 @@ CellStepLimit cell_step_limit(const mesh::Grid& grid, const DustSettings& st, co
 
 double DustDynamics::max_dt() const {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
-  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, sizes_);
+  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, gravity_, stopping_time_);
   Real dt = std::numeric_limits<Real>::max();
   Kokkos::parallel_reduce(
       "disc::dust_max_dt", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>({ng, ng, 0}, {ng + nr, ng + nt, ns}),
@@ -630,7 +649,7 @@ const char* DustDynamics::StepLimit::describe(int kind) {
 
 DustDynamics::StepLimit DustDynamics::step_limit() const {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
-  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, sizes_);
+  const CellStepLimit limit = cell_step_limit(grid_, settings_, W, gas_, schmidt_, gravity_, stopping_time_);
   using Reducer = Kokkos::MinLoc<Real, long long>;
   Reducer::value_type best;
   const long long kinds = StepLimit::kKinds + 1;  // kNone is stored as 0
@@ -714,18 +733,6 @@ double DustDynamics::mass(int s) const {
       "disc::dust_mass", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(),
       KOKKOS_LAMBDA(int i, int j, Real& acc) { acc += Q_(i, j, s, kRho) * V(i, j); }, m);
   return grid_.comm().sum(m);
-}
-
-View<Real***> DustDynamics::stopping_times() const {
-  View<Real***> ts("dust::stopping_times", grid_.nr_total(), grid_.nt_total(), ns_);
-  auto rho_g = gas_.rho, cs2 = gas_.cs2;
-  auto sizes = sizes_;
-  const Real rho_m = settings_.rho_grain;
-  for_cells(
-      "disc::dust_stopping_times", 0, grid_.nr_total(), 0, grid_.nt_total(), ns_, KOKKOS_LAMBDA(int i, int j, int s) {
-        ts(i, j, s) = dust::epstein_stopping_time(rho_m, sizes(s), rho_g(i, j), math::sqrt(cs2(i, j)));
-      });
-  return ts;
 }
 
 }  // namespace mote::disc

@@ -119,8 +119,9 @@ class DustDynamics {
   /// Per-cell budget (nr_total, nt_total, species, 2): floor additions, outflow
   /// through the cell's faces on the grid boundary (checkpointed).
   View<Real****> budget;
-  /// Stopping times (i, j, s) from the current gas state (Epstein, eq. 14).
-  View<Real***> stopping_times() const;
+  /// Stopping times (i, j, s) of the gas state of the last set_gas (Epstein, eq. 14);
+  /// the step's own View, read-only for callers.
+  View<Real***> stopping_times() const { return stopping_time_; }
 
   // The stages of step(). Public only because nvcc's extended lambdas (the
   // kernels inside them) may not live in private member functions.
@@ -146,6 +147,11 @@ class DustDynamics {
   RealView1 schmidt_, sizes_;
   View<Real****> W_half_, flux_R_, flux_Z_, slope_;
   RealView2 gas_D_, inv_rho_g_;
+  // Set up once, updated with the gas: the stellar gravity (g_R, g_Z) at every cell
+  // centre (constructor) and the stopping times (i, j, s) (set_gas), which the stages
+  // and the time-step would otherwise recompute for every species and stage.
+  RealView3 gravity_;
+  View<Real***> stopping_time_;
   // Per-cell reconstruction geometry along R (i) and theta (j): inv_dp, inv_dm, c_F, c_B.
   RealView2 slope_R_, slope_Z_;
 };
