@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check a transition_disc run (RBO24 sec. 7, VALIDATION F1) and draw its figures.
 
-    check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--trap-cells 2]
+    check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
              [--frag-factor 2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
              [--iso-T-ref 159.1]
 
@@ -16,6 +16,12 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
   * steady state: the mass-weighted change of sigma_d(m, R) between the last
     two snapshots, per dex of time, sum |d sigma| / sum sigma / dlog10 t
     <= --steady-tol (needs two snapshots after 1e5 yr to be meaningful);
+  * steady size distribution: the same between the distributions of each
+    column, sigma_d(m, R) / Sigma_d(R), weighted by Sigma_d(R) (mass-weighted L1
+    distance per dex of time) <= --shape-tol. The first row also counts the dust
+    that drifts into the trap from the outer disc, whose mass-weighted drift
+    time is about 1 Myr (README), this one only the shape the growth,
+    fragmentation, settling and drift give each column;
   * dust trap: the radius of the peak of the total Sigma_d lies within
     --trap-cells cells of the mid-plane gas pressure maximum (rho_g c_s^2);
   * fragmentation-limited growth: in every cell of the trap (Sigma_d above
@@ -65,6 +71,7 @@ import mote  # noqa: E402
 from mote.verdict import Verdict  # noqa: E402
 
 YEAR_S = 3.15576e7
+AU = 1.495978707e13
 F_FRAG, F_DRIFT = 0.37, 0.55  # Birnstiel, Klahr & Ercolano (2012), two-population fits (eq. 8 and 18)
 
 
@@ -135,6 +142,40 @@ def check_steady(v, discs, tol):
     v.check(change <= tol,
             f"steady state: sigma_d(m, R) changed by {change:.3g} per dex of time between "
             f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (mass-weighted) <= {tol:g}")
+
+
+def check_shape(v, discs, tol):
+    if len(discs) < 2 or discs[-2].time_yr <= 0:
+        v.check(False, "steady size distribution: needs two snapshots after t = 0")
+        return
+    old, new = discs[-2], discs[-1]
+    dex = np.log10(new.time_yr / old.time_yr)
+    column = new.sigma_m.sum(axis=0)
+    shape = lambda d: d.sigma_m / np.maximum(d.sigma_m.sum(axis=0), 1e-300)[None, :]
+    change = np.sum(column * np.abs(shape(new) - shape(old)).sum(axis=0)) / column.sum() / dex
+    v.check(change <= tol,
+            f"steady size distribution: sigma_d(m, R) / Sigma_d(R) changed by {change:.3g} per dex of time between "
+            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (Sigma_d-weighted L1) <= {tol:g}")
+
+
+def report_drift(v, snap, d, radii=(8.0, 12.0, 16.0)):
+    """INFO: the column's mass-weighted radial dust velocity and R / |v| at each radius, and the peak species'
+    column velocity against the mid-plane drift -2 St eta v_K / (1 + St^2) (gas v_R = 0; Takeuchi & Lin 2002)."""
+    u = snap.units
+    vR = np.array([snap.fields[f"dust_vR_{s}"] for s in range(len(d.a))]) * u["length_cm"] / u["time_s"]
+    dlnP = np.gradient(np.log(d.pressure_mid()), np.log(d.R))
+    for radius in radii:
+        i = d.column(radius)
+        mass = d.rho[:, i, :] * d.dZ[i][None, :]
+        v_s = np.sum(mass * vR[:, i, :], axis=1) / np.maximum(np.sum(mass, axis=1), 1e-300)
+        v_all = np.sum(mass * vR[:, i, :]) / np.sum(mass)
+        k = int(np.argmax(d.sigma_m[:, i]))
+        vK = d.Omega[i] * d.R[i]
+        eta = -0.5 * d.cs2[i, 0] / vK**2 * dlnP[i]
+        St = d.ts[k, i, 0] * d.Omega[i]
+        v.info(f"drift at {d.R[i] / AU:.2f} au: mass-weighted v_R = {v_all:.3g} cm/s, R / |v_R| = "
+               f"{d.R[i] / abs(v_all) / YEAR_S:.3g} yr; peak species a = {d.a[k]:.3g} cm (St {St:.3g}) "
+               f"{v_s[k]:.3g} cm/s against -2 St eta v_K / (1 + St^2) = {-2 * St * eta * vK / (1 + St**2):.3g}")
 
 
 def trap_cells(d):
@@ -325,6 +366,7 @@ def main():
     p.add_argument("run_dir")
     p.add_argument("--plot", metavar="DIR")
     p.add_argument("--steady-tol", type=float, default=0.1)
+    p.add_argument("--shape-tol", type=float, default=0.05)
     p.add_argument("--trap-cells", type=int, default=2)
     p.add_argument("--frag-factor", type=float, default=2.0)
     p.add_argument("--settle-tol", type=float, default=0.3)
@@ -337,12 +379,15 @@ def main():
     if not paths:
         print(f"no snapshots in {args.run_dir}")
         return 1
-    discs = [Disc(mote.read_snapshot(q)) for q in paths[-2:]]
+    snaps = [mote.read_snapshot(q) for q in paths[-2:]]
+    discs = [Disc(q) for q in snaps]
     d = discs[-1]
     print(f"{args.run_dir}: last snapshot at t = {d.time_yr:.4g} yr, {len(d.R)} x {d.Z.shape[1]} cells, "
           f"{len(d.a)} species")
     v = Verdict()
     check_steady(v, discs, args.steady_tol)
+    check_shape(v, discs, args.shape_tol)
+    report_drift(v, snaps[-1], d)
     check_trap(v, d, args.trap_cells)
     check_growth_limits(v, d, args.frag_factor)
     check_settling(v, d, args.radius, args.settle_tol)
