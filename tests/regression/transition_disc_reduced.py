@@ -41,6 +41,7 @@ for prefix in ASSERTED:
     rows = [ln for ln in lines if ln[5:].startswith(prefix) and ln[:4] in ("PASS", "FAIL")]
     checks.check(len(rows) > 0 and all(ln.startswith("PASS") for ln in rows),
                  f"check.py '{prefix}' rows ({len(rows)}) all PASS")
-figures = sorted(os.listdir(os.path.join(work, "figures")))
+figure_dir = os.path.join(work, "figures")
+figures = sorted(os.listdir(figure_dir)) if os.path.isdir(figure_dir) else []
 checks.check(len(figures) == 6, f"check.py --plot wrote the six figures: {', '.join(figures)}")
 sys.exit(checks.finish())
