@@ -126,7 +126,10 @@ class DustDynamics {
   // The stages of step(). Public only because nvcc's extended lambdas (the
   // kernels inside them) may not live in private member functions.
   void fill_ghosts(const View<Real****>& w);
-  void compute_fluxes(const View<Real****>& w, bool second_order);
+  /// Face fluxes of w: donor cell (SecondOrder = false, the half step) or from the
+  /// limited piecewise-linear reconstruction (the full step).
+  template <bool SecondOrder>
+  void compute_fluxes(const View<Real****>& w);
   /// Limited slopes of w along R (radial = true, cells i in [ng-1, ng+nr]) or
   /// tan(theta) (cells j in [ng-1, ng+nt]) into slope_, once per cell.
   void compute_slopes(const View<Real****>& w, bool radial);
