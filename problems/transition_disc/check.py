@@ -36,9 +36,11 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
     v_frag >= 1000 cm/s also the drift limit (with BKE12's f_d, not measured
     against a full run here)
         a_drift = f_d (2 Sigma_d / pi rho_m) (v_K / c_s)^2 |dln P / dln R|^-1, f_d = 0.55,
-    outside the trap, where a_drift < a_frag: peak within the same factor of
-    min(a_frag, a_drift);
-  * settling: at --radius (au) for three sizes (about 0.5, 50 and 150 um, or the
+    beyond the trap (the outer disc; the cavity lies inside it), where
+    a_drift < a_frag: peak within the same factor of min(a_frag, a_drift);
+  * settling: at --radius (au; 6, or 10 for v_frag >= 1000 cm/s, where RBO24
+    sec. 7.2 find the trap's small grains swept up near the mid-plane, which
+    is reported as INFO with Krijt & Ciesla's alpha < Sigma_d / Sigma_g) for three sizes (about 0.5, 50 and 150 um, or the
     largest grown size), the dust scale height sqrt(<Z^2>) of the column agrees
     with h_g (alpha / (alpha + St))^1/2 (h_g = c_s / Omega_K, St = t_s Omega_K
     at the mid-plane, Takeuchi & Lin 2002) within --settle-tol; reported: the
@@ -206,13 +208,14 @@ def check_growth_limits(v, d, factor):
     v.info(f"fragmentation limit: peak / (f_f a_frag), BKE12's two-population size (f_f = {F_FRAG:g}), lies in "
            f"[{ratio.min() / F_FRAG:.3g}, {ratio.max() / F_FRAG:.3g}]")
     if d.v_frag >= 1000:
-        outside = np.setdiff1d(np.nonzero(ad < af)[0], trap)
+        outer = np.arange(trap.max() + 1, len(d.R))  # beyond the trap (inside it lies the cavity)
+        outside = outer[ad[outer] < af[outer]]
         if len(outside) == 0:
-            v.info("drift limit: no cell outside the trap with a_drift < a_frag")
+            v.info("drift limit: no cell beyond the trap with a_drift < a_frag")
             return
         r = peak[outside] / np.minimum(af, ad)[outside]
         v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
-                f"drift limit: in the {len(outside)} drift-limited cells outside the trap the peak / min(a_frag, "
+                f"drift limit: in the {len(outside)} drift-limited cells beyond the trap the peak / min(a_frag, "
                 f"a_drift) lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
 
 
@@ -244,6 +247,21 @@ def check_settling(v, d, radius, tol):
     sizes = ", ".join(f"{d.a[s] * 1e4:.3g}" for s in up) or "none"
     v.info(f"intermediate-size enhancement at {d.R[i] / 1.495978707e13:.2f} au: species denser at Z = 1 h_g than at "
            f"the mid-plane: {sizes} um")
+
+
+def report_sweeping(v, d):
+    """INFO for v_frag >= 1000 (RBO24 sec. 7.2): in the trap the large grains sweep up the small ones near the
+    mid-plane (Krijt & Ciesla 2016), so the small grains' scale heights fall below Takeuchi & Lin's; and where
+    alpha < Sigma_d / Sigma_g (their criterion, RBO24 Fig. 21)."""
+    i = int(np.argmax(np.sum(d.Sigma_s, axis=0)))
+    for s in settling_species(d, i):
+        h_d, h_ref, St = scale_heights(d, i, s)
+        v.info(f"sweeping at the trap's peak, {d.R[i] / AU:.2f} au: a = {d.a[s] * 1e4:.3g} um (St {St:.2e}) "
+               f"h_d / h_g = {h_d / d.h_g[i]:.3f} against Takeuchi & Lin's {h_ref / d.h_g[i]:.3f}")
+    ratio = np.sum(d.Sigma_s, axis=0) / d.Sigma_g
+    where = d.R[ratio > d.alpha] / AU
+    v.info("Krijt & Ciesla criterion alpha < Sigma_d / Sigma_g: " +
+           (f"{len(where)} radii, {where.min():.2f}-{where.max():.2f} au" if len(where) else "nowhere"))
 
 
 def check_temperature(v, d, T_ref):
@@ -370,7 +388,9 @@ def main():
     p.add_argument("--trap-cells", type=int, default=2)
     p.add_argument("--frag-factor", type=float, default=2.0)
     p.add_argument("--settle-tol", type=float, default=0.3)
-    p.add_argument("--radius", type=float, default=6.0, help="au, for Fig. 14, 16, 17 and the settling check")
+    p.add_argument("--radius", type=float,
+                   help="au, for Fig. 14, 16, 17 and the settling check (default 6; 10 for v_frag >= 1000 cm/s, "
+                        "away from the trap, where RBO24 Fig. 20 find Takeuchi & Lin's profiles)")
     p.add_argument("--mass-tol", type=float, default=1e-10)
     p.add_argument("--iso-T-ref", type=float, default=159.1000339385544,
                    help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
@@ -390,14 +410,17 @@ def main():
     report_drift(v, snaps[-1], d)
     check_trap(v, d, args.trap_cells)
     check_growth_limits(v, d, args.frag_factor)
-    check_settling(v, d, args.radius, args.settle_tol)
+    radius = args.radius or (10.0 if d.v_frag >= 1000 else 6.0)
+    check_settling(v, d, radius, args.settle_tol)
+    if d.v_frag >= 1000:
+        report_sweeping(v, d)
     check_mass(v, args.run_dir, args.mass_tol)
     if d.radiation:
         check_temperature(v, d, args.iso_T_ref)
     else:
         v.info("isothermal run: the non-isothermal checks (super-heated surface, cooler interior) need [radiation]")
     if args.plot:
-        plot(d, args.plot, args.radius)
+        plot(d, args.plot, radius)
     return v.finish()
 
 
