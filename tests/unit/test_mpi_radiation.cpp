@@ -160,7 +160,9 @@ FldRun run_fld(const mesh::Grid& grid) {
   fill_problem(grid, fields, run.state);
   fld.equilibrate_radiation(run.state);
   for (int n = 0; n < 2; ++n) run.iterations += fld.step(1e6, fields, run.state).total_iterations();
-  const auto relaxed = fld.relax_to_steady_state(fields, run.state, 1e-9, 40);
+  // The lagged iteration is converged well below the solver tolerance, so that
+  // what remains between the runs is the linear solves' own error.
+  const auto relaxed = fld.relax_to_steady_state(fields, run.state, 1e-12, 60);
   run.iterations += relaxed.iterations;
   run.solves = 2 + relaxed.solves;
   run.luminosity = fld.open_boundary_luminosity(run.state);
@@ -173,7 +175,8 @@ FldRun run_fld(const mesh::Grid& grid) {
 // neighbouring slab's cells, halo exchange before each spmv, dot products over
 // the ranks, block-Jacobi ILU(0)): its T and E^b are the one-rank solution
 // (here computed by each rank alone on the whole grid) to the solver's
-// tolerance, after two implicit steps and the lagged steady state.
+// tolerance, after two implicit steps and the lagged steady state: T and the
+// open-boundary power to the tolerance, E^b to 10 x it (D1's error bound).
 TEST(MpiFld, SlabsGiveTheOneRankTemperature) {
   const auto comm = core::Comm::world();
   ASSERT_EQ(comm.size(), 2) << "run this test on 2 ranks";
@@ -208,8 +211,9 @@ TEST(MpiFld, SlabsGiveTheOneRankTemperature) {
         "FLD on 2 ranks against one: worst T %.3e, worst E %.3e, open-boundary power %.3e; %d solves, BiCGStab "
         "iterations %d (2 ranks) and %d (1 rank)\n",
         worst_T, worst_E, power, split.solves, split.iterations, alone.iterations);
-  EXPECT_LE(worst_T, 1e-8);
-  EXPECT_LE(worst_E, 1e-8);
-  EXPECT_LE(power, 1e-8);
+  const double tolerance = fld_settings().solver.tolerance;
+  EXPECT_LE(worst_T, tolerance);
+  EXPECT_LE(worst_E, 10.0 * tolerance);
+  EXPECT_LE(power, tolerance);
   EXPECT_EQ(comm.max(split.luminosity), comm.min(split.luminosity));  // every rank has the grid's total
 }
