@@ -7,28 +7,37 @@ namespace mote::mesh {
 
 namespace {
 
-/// Number of values per radial index i (product of the trailing extents).
+/// Extent r of a view, 1 beyond its rank.
 template <class ViewT>
-int trailing_size(const ViewT& f) {
-  int n = 1;
-  for (unsigned r = 1; r < ViewT::rank; ++r) n *= static_cast<int>(f.extent(r));
-  return n;
+int extent_or_one(const ViewT& f, unsigned r) {
+  return r < ViewT::rank ? static_cast<int>(f.extent(r)) : 1;
 }
 
-/// Element (i, m) of a view, with m the flattened trailing index (last index fastest).
+/// Element (i, a, b, c) of a view of rank 1 to 4; indices beyond its rank are ignored.
 template <class ViewT>
-KOKKOS_INLINE_FUNCTION Real& at(const ViewT& f, int i, int m) {
+KOKKOS_INLINE_FUNCTION Real& element(const ViewT& f, int i, int a, int b, int c) {
   if constexpr (ViewT::rank == 1) {
     return f(i);
   } else if constexpr (ViewT::rank == 2) {
-    return f(i, m);
+    return f(i, a);
   } else if constexpr (ViewT::rank == 3) {
-    const int n2 = static_cast<int>(f.extent(2));
-    return f(i, m / n2, m % n2);
+    return f(i, a, b);
   } else {
-    const int n2 = static_cast<int>(f.extent(2)), n3 = static_cast<int>(f.extent(3));
-    return f(i, m / (n2 * n3), (m / n3) % n2, m % n3);
+    return f(i, a, b, c);
   }
+}
+
+/// Calls body(g, m, a, b, c) for the elements (a, b, c) of ng radial rows g, with
+/// m = (a n2 + b) n3 + c their flattened trailing index (last index fastest). The
+/// loop runs over (g n1 + a, b, c), so no element needs a division by an extent.
+template <class ViewT, class Body>
+void for_rows(const std::string& name, const ViewT& f, int ng, const Body& body) {
+  const int n1 = extent_or_one(f, 1), n2 = extent_or_one(f, 2), n3 = extent_or_one(f, 3);
+  par_for(
+      name, 0, ng * n1, 0, n2, 0, n3, KOKKOS_LAMBDA(int row, int b, int c) {
+        const int g = row / n1, a = row - g * n1;
+        body(g, (a * n2 + b) * n3 + c, a, b, c);
+      });
 }
 
 }  // namespace
@@ -41,7 +50,7 @@ RadialHalo::RadialHalo(const Grid& grid) : comm_(grid.comm()), ng_(grid.ng), nr_
 template <class ViewT>
 void RadialHalo::exchange_impl(const ViewT& f) {
   if (left_ < 0 && right_ < 0) return;
-  const int per_row = trailing_size(f), ng = ng_, nr = nr_;
+  const int per_row = extent_or_one(f, 1) * extent_or_one(f, 2) * extent_or_one(f, 3), ng = ng_, nr = nr_;
   const int half = ng * per_row;
   if (static_cast<int>(send_.extent(0)) < 2 * half) {
     send_ = RealView1("halo::send", 2 * half);
@@ -49,10 +58,10 @@ void RadialHalo::exchange_impl(const ViewT& f) {
   }
   auto send = send_, recv = recv_;
   // send[0, half): first ng active rows (to the left); send[half, 2 half): last ng active rows (to the right).
-  par_for(
-      "mesh::halo_pack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
-        send(g * per_row + m) = at(f, ng + g, m);
-        send(half + g * per_row + m) = at(f, nr + g, m);
+  for_rows(
+      "mesh::halo_pack", f, ng, KOKKOS_LAMBDA(int g, int m, int a, int b, int c) {
+        send(g * per_row + m) = element(f, ng + g, a, b, c);
+        send(half + g * per_row + m) = element(f, nr + g, a, b, c);
       });
   auto send_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), send);
   auto recv_h = Kokkos::create_mirror_view(recv);
@@ -62,10 +71,10 @@ void RadialHalo::exchange_impl(const ViewT& f) {
   comm_.sendrecv(send_h.data(), half, left_, recv_h.data() + half, half, right_, 22);
   Kokkos::deep_copy(recv, recv_h);
   const bool fill_left = left_ >= 0, fill_right = right_ >= 0;
-  par_for(
-      "mesh::halo_unpack", 0, ng, 0, per_row, KOKKOS_LAMBDA(int g, int m) {
-        if (fill_left) at(f, g, m) = recv(g * per_row + m);
-        if (fill_right) at(f, ng + nr + g, m) = recv(half + g * per_row + m);
+  for_rows(
+      "mesh::halo_unpack", f, ng, KOKKOS_LAMBDA(int g, int m, int a, int b, int c) {
+        if (fill_left) element(f, g, a, b, c) = recv(g * per_row + m);
+        if (fill_right) element(f, ng + nr + g, a, b, c) = recv(half + g * per_row + m);
       });
 }
 
