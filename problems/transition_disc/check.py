@@ -2,7 +2,7 @@
 """Check a transition_disc run (RBO24 sec. 7, VALIDATION F1) and draw its figures.
 
     check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
-             [--frag-factor 2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
+             [--frag-factor 2] [--drift-slope-tol 0.2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
              [--iso-T-ref 159.1]
 
 Everything is computed here from the snapshots and the history, independently
@@ -38,6 +38,10 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
         a_drift = f_d (2 Sigma_d / pi rho_m) (v_K / c_s)^2 |dln P / dln R|^-1, f_d = 0.55,
     beyond the trap (the outer disc; the cavity lies inside it), where
     a_drift < a_frag: peak within the same factor of min(a_frag, a_drift);
+    and, independent of f_d's calibration, the radial shape: where
+    a_drift < a_frag / 2 the least-squares slope d ln(peak) / d ln R lies
+    within --drift-slope-tol (relative) of a_drift's, which differs from
+    a_frag's (R^-0.5 here) by a factor of about 5;
   * settling: at --radius (au; 6, or 10 for v_frag >= 1000 cm/s, where RBO24
     sec. 7.2 find the trap's small grains swept up near the mid-plane, which
     is reported as INFO with Krijt & Ciesla's alpha < Sigma_d / Sigma_g) for three sizes (about 0.5, 50 and 150 um, or the
@@ -194,7 +198,7 @@ def check_trap(v, d, cells):
             f"{d.R[iP] / au:.3f} au (<= {cells})")
 
 
-def check_growth_limits(v, d, factor):
+def check_growth_limits(v, d, factor, slope_tol):
     if d.v_frag <= 0:
         v.info("growth limits: no coagulation.v_frag in the deck")
         return
@@ -217,6 +221,22 @@ def check_growth_limits(v, d, factor):
         v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
                 f"drift limit: in the {len(outside)} drift-limited cells beyond the trap the peak / min(a_frag, "
                 f"a_drift) lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
+        check_drift_slope(v, d, outer[ad[outer] < 0.5 * af[outer]], slope_tol)
+
+
+def check_drift_slope(v, d, cells, tol):
+    """Drift-limited growth by its radial shape: the peak size falls with R as a_drift does (least squares in
+    log-log over the cells where a_drift < a_frag / 2), not as a_frag."""
+    if len(cells) < 3:
+        v.check(False, f"drift-limited shape: {len(cells)} cells beyond the trap with a_drift < a_frag / 2, needs 3")
+        return
+    lnR = np.log(d.R[cells])
+    slope = lambda a: np.polyfit(lnR, np.log(a[cells]), 1)[0]
+    s_peak, s_drift, s_frag = slope(d.peak_size()), slope(d.a_drift()), slope(d.a_frag())
+    v.check(abs(s_peak / s_drift - 1.0) <= tol,
+            f"drift-limited shape: over {d.R[cells[0]] / AU:.2f}-{d.R[cells[-1]] / AU:.2f} au ({len(cells)} cells) the "
+            f"peak size goes as R^{s_peak:.3g} against a_drift's R^{s_drift:.3g} (relative {abs(s_peak / s_drift - 1):.3g}"
+            f" <= {tol:g}; a_frag's R^{s_frag:.3g})")
 
 
 def settling_species(d, i):
@@ -387,6 +407,8 @@ def main():
     p.add_argument("--shape-tol", type=float, default=0.05)
     p.add_argument("--trap-cells", type=int, default=2)
     p.add_argument("--frag-factor", type=float, default=2.0)
+    p.add_argument("--drift-slope-tol", type=float, default=0.2,
+                   help="relative: the peak size's d ln a / d ln R against a_drift's (v_frag >= 1000 cm/s)")
     p.add_argument("--settle-tol", type=float, default=0.3)
     p.add_argument("--radius", type=float,
                    help="au, for Fig. 14, 16, 17 and the settling check (default 6; 10 for v_frag >= 1000 cm/s, "
@@ -409,7 +431,7 @@ def main():
     check_shape(v, discs, args.shape_tol)
     report_drift(v, snaps[-1], d)
     check_trap(v, d, args.trap_cells)
-    check_growth_limits(v, d, args.frag_factor)
+    check_growth_limits(v, d, args.frag_factor, args.drift_slope_tol)
     radius = args.radius or (10.0 if d.v_frag >= 1000 else 6.0)
     check_settling(v, d, radius, args.settle_tol)
     if d.v_frag >= 1000:
