@@ -262,11 +262,26 @@ def check_settling(v, d, radius, tol):
                 f"settling at {d.R[i] / 1.495978707e13:.2f} au, a = {d.a[s] * 1e4:.3g} um (St {St:.2e}): "
                 f"h_d / h_g = {h_d / d.h_g[i]:.3f} against (alpha / (alpha + St))^1/2 = {h_ref / d.h_g[i]:.3f}, "
                 f"relative {e:.3f} <= {tol:g}")
+    report_enhancement(v, d, i)
+
+
+def report_enhancement(v, d, i):
+    """INFO (RBO24 sec. 7.1): the 10-100 um grains at one gas scale height, rho(h_g) / rho(0) against Takeuchi &
+    Lin's (2002, eq. 19, Sc = 1) for the same St, and the species denser there than at the mid-plane."""
     j1 = int(np.argmin(np.abs(d.Z[i] - d.h_g[i])))
+    z = d.Z[i, j1] / d.h_g[i]
     up = [s for s in range(len(d.a)) if d.rho[s, i, j1] > d.rho[s, i, 0]]
-    sizes = ", ".join(f"{d.a[s] * 1e4:.3g}" for s in up) or "none"
-    v.info(f"intermediate-size enhancement at {d.R[i] / 1.495978707e13:.2f} au: species denser at Z = 1 h_g than at "
-           f"the mid-plane: {sizes} um")
+    v.info(f"intermediate-size enhancement at {d.R[i] / AU:.2f} au, Z = {z:.2f} h_g: species denser there than at "
+           f"the mid-plane: " + (", ".join(f"{d.a[s] * 1e4:.3g} um" for s in up) or "none"))
+    middle = [s for s in range(len(d.a)) if 10e-4 <= d.a[s] <= 100e-4]
+    if not middle:
+        return
+    St = d.ts[middle, i, 0] * d.Omega[i]
+    tl = np.exp(-St / d.alpha * (np.exp(z**2 / 2) - 1) - z**2 / 2)
+    gain = d.rho[middle, i, j1] / d.rho[middle, i, 0] / tl
+    k = int(np.argmax(gain))
+    v.info(f"intermediate-size enhancement at {d.R[i] / AU:.2f} au: rho(Z) / rho(0) over Takeuchi & Lin's for "
+           f"10-100 um lies in [{gain.min():.3g}, {gain.max():.3g}] (largest at {d.a[middle[k]] * 1e4:.3g} um)")
 
 
 def report_sweeping(v, d):
