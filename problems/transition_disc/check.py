@@ -48,8 +48,9 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
     largest grown size), the dust scale height sqrt(<Z^2>) of the column agrees
     with h_g (alpha / (alpha + St))^1/2 (h_g = c_s / Omega_K, St = t_s Omega_K
     at the mid-plane, Takeuchi & Lin 2002) within --settle-tol; reported: the
-    species whose density at one gas scale height exceeds its mid-plane value
-    (the intermediate-size enhancement of RBO24 sec. 7.1);
+    intermediate-size enhancement of RBO24 sec. 7.1, the 10-100 um grains'
+    rho(h_g) / rho(0) over Takeuchi & Lin's, and the species whose density at
+    one gas scale height exceeds its mid-plane value;
   * mass: dust_mass - dust_floor_added + dust_outflow of the history stays at
     its initial value to --mass-tol of the dust mass on every row;
   * non-isothermal runs (a [radiation] table): a super-heated surface layer,
