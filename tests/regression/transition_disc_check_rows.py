@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""problems/transition_disc/check.py's VALIDATION F1 rows on synthetic discs
+whose answers are known (issue 20): the rows that only a 1 Myr run reaches are
+tested here, each with a disc built to pass and one built to fail.
+
+usage: transition_disc_check_rows.py PROBLEM_DIR
+
+The synthetic disc is RBO24 sec. 7's gas (Sigma_0 (R/au)^-1 exp[-(5 au/R)^10],
+DustPy's mid-plane T) on 80 log cells over 3-20 au and 400 theta cells over
+0-pi/4, with 135 sizes over 0.1 um - 20 cm. Its dust column is a Gaussian trap at
+the pressure maximum over a floor of dust-to-gas 3e-4 (drift-limited beyond the
+trap for v_frag = 1000 cm/s); each column's sigma_d(m) is a log-normal whose
+peak is put at a chosen size a_peak(R); each species' vertical profile is a
+Gaussian of a chosen scale height. Checks:
+  * steady state: sigma_d(m, R) scaled by 1 + eps between 1e5 and 3e5 yr gives
+    eps / (1 + eps) / log10 3, to 1e-12; PASS at 0.05, FAIL at 0.2 (tol 0.1);
+  * steady size distribution: 0 (to 1e-12) for a pure scaling (PASS), FAIL when every
+    column's peak moves by a factor 2 (tol 0.05);
+  * dust trap: PASS at the pressure maximum, FAIL 3 cells outward (2 cells);
+  * fragmentation limit (v_frag = 100): PASS for a_peak = a_frag, FAIL for
+    2.5 a_frag (factor 2); no drift rows;
+  * drift limit (v_frag = 1000): a_peak = min(a_frag, a_drift) passes both
+    drift rows, and the shape row reports the peak's slope to 2 % of a_drift's,
+    which lies between R^-1.5 (Sigma_d ~ R^-1, T ~ R^-1/2) and R^-1.77 (the
+    cavity's term in dln P / dln R, -2.03 at 6.5 au, -2.75 far out);
+    a_peak = a_frag beyond the trap fails both; a_peak = a_drift (R / R_0)^(0.3 s)
+    (s a_drift's slope, 0.5 at R_0 so within the factor 2) fails the shape row only;
+  * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
+    1.5 x that fails them (tol 0.3);
+  * non-isothermal rows: a mid-plane at 0.9 x the isothermal T and a top cell at
+    1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both; a mid-plane at 1.1 x fails
+    the cooler interior, a top at 0.95 x the super-heated surface.
+"""
+import os
+import re
+import sys
+
+import numpy as np
+
+from harness import Checks
+
+sys.path.insert(0, sys.argv[1])
+import check  # noqa: E402
+
+AU, YEAR = check.AU, check.YEAR_S
+K_B, M_H, G, M_SUN, R_SUN = 1.380649e-16, 1.6735575e-24, 6.674e-8, 1.98840987e33, 6.957e10
+ALPHA, RHO_M = 1e-3, 1.6
+
+
+class Rows(check.Verdict):
+    """A Verdict that keeps its rows: [(PASS/FAIL/INFO, text)]."""
+
+    def __init__(self):
+        super().__init__()
+        self.rows = []
+
+    def check(self, ok, text):
+        super().check(ok, text)
+        self.rows.append(("PASS" if ok else "FAIL", text))
+
+    def info(self, text):
+        super().info(text)
+        self.rows.append(("INFO", text))
+
+    def verdicts(self, prefix):
+        return [r[0] for r in self.rows if r[1].startswith(prefix) and r[0] != "INFO"]
+
+
+def gas_disc(v_frag):
+    """A check.Disc holding RBO24 sec. 7's gas on a log grid, without dust yet."""
+    d = object.__new__(check.Disc)
+    d.R = np.geomspace(3.0, 20.0, 80) * AU
+    tan_te = np.tan(np.linspace(0.0, np.pi / 4, 401))
+    d.Z = d.R[:, None] * (0.5 * (tan_te[1:] + tan_te[:-1]))[None, :]
+    d.dZ = d.R[:, None] * np.diff(tan_te)[None, :]
+    R_au = d.R / AU
+    d.Sigma_g = 250.0 / R_au * np.exp(-((5.0 / R_au) ** 10))
+    T = 4500.0 * (0.05 / 2) ** 0.25 * np.sqrt(1.7 * R_SUN / d.R)
+    d.cs2 = np.repeat((K_B * T / (2.4 * M_H))[:, None], d.Z.shape[1], axis=1)
+    d.Omega = np.sqrt(G * M_SUN / d.R**3)
+    d.h_g = np.sqrt(d.cs2[:, 0]) / d.Omega
+    d.rho_g = (d.Sigma_g / (np.sqrt(2 * np.pi) * d.h_g))[:, None] * np.exp(-0.5 * (d.Z / d.h_g[:, None]) ** 2)
+    d.alpha, d.rho_m, d.v_frag = ALPHA, RHO_M, v_frag
+    d.a = np.geomspace(1e-5, 20.0, 135)
+    d.dlnm = 3.0 * np.log(d.a[1] / d.a[0])
+    d.time_yr = 3e5
+    return d
+
+
+def dust_column(d, trap_shift=0):
+    """Sigma_d(R): a Gaussian trap (0.3 au wide, dust-to-gas 0.01) at the pressure maximum shifted by trap_shift
+    cells, over dust-to-gas 3e-4."""
+    iP = int(np.argmax(d.pressure_mid()[1:-1])) + 1 + trap_shift
+    return d.Sigma_g * (0.01 * np.exp(-(((d.R - d.R[iP]) / (0.3 * AU)) ** 2)) + 3e-4)
+
+
+def fill_dust(d, column, a_peak, height=lambda d, St: 1.0):
+    """sigma_d(m, R): log-normal (width 1 in ln a) around a_peak(R) (within the grid), holding Sigma_d = column;
+    rho_s(Z) Gaussian with h_d = height(d, St) h_g (alpha / (alpha + St))^1/2 (at least the first cell), St of
+    Epstein drag at the mid-plane."""
+    a_peak = np.clip(a_peak, d.a[0], d.a[-1])  # the cavity's a_frag is below the grid
+    w = np.exp(-0.5 * (np.log(d.a[:, None] / a_peak[None, :])) ** 2)
+    d.Sigma_s = column[None, :] * w / w.sum(axis=0)[None, :]
+    d.sigma_m = d.Sigma_s / d.dlnm
+    St = np.pi / 2 * d.a[:, None] * RHO_M / d.Sigma_g[None, :]
+    d.ts = np.repeat((St / d.Omega[None, :])[:, :, None], d.Z.shape[1], axis=2)
+    h_d = np.maximum(height(d, St) * d.h_g[None, :] * np.sqrt(ALPHA / (ALPHA + St)), d.dZ[None, :, 0])
+    profile = np.exp(-0.5 * (d.Z[None, :, :] / h_d[:, :, None]) ** 2)
+    d.rho = d.Sigma_s[:, :, None] * profile / (2.0 * np.sum(profile * d.dZ[None], axis=2))[:, :, None]
+    return d
+
+
+def disc(v_frag, a_peak_of, trap_shift=0, height=lambda d, St: 1.0):
+    d = gas_disc(v_frag)
+    column = dust_column(d, trap_shift)
+    d.Sigma_s = column[None, :] * np.ones((len(d.a), 1)) / len(d.a)  # a_drift needs the column only
+    return fill_dust(d, column, a_peak_of(d), height)
+
+
+def number_after(text, key):
+    return float(re.search(re.escape(key) + r"\s*([-+0-9.eE]+)", text).group(1))
+
+
+def steady_rows(checks):
+    for eps, expect in ((0.05 * np.log10(3.0) / (1 - 0.05 * np.log10(3.0)), "PASS"), (0.3, "FAIL")):
+        old = disc(100.0, lambda d: d.a_frag())
+        new = disc(100.0, lambda d: d.a_frag())
+        old.time_yr, new.sigma_m = 1e5, old.sigma_m * (1 + eps)
+        v = Rows()
+        check.check_steady(v, [old, new], 0.1)
+        check.check_shape(v, [old, new], 0.05)
+        got = number_after(v.rows[0][1], "changed by")
+        want = eps / (1 + eps) / np.log10(3.0)
+        checks.check(v.verdicts("steady state") == [expect] and abs(got / want - 1) < 1e-3,
+                     f"steady state: sigma_d scaled by {1 + eps:.4g} gives {got:.4g} per dex (analytic {want:.4g}), "
+                     f"{expect} at tol 0.1")
+        checks.check(v.verdicts("steady size") == ["PASS"] and number_after(v.rows[1][1], "changed by") < 1e-12,
+                     "steady size distribution: a pure scaling changes it by 0, PASS")
+    old = disc(100.0, lambda d: d.a_frag())
+    new = disc(100.0, lambda d: 2.0 * d.a_frag())
+    old.time_yr = 1e5
+    v = Rows()
+    check.check_shape(v, [old, new], 0.05)
+    checks.check(v.verdicts("steady size") == ["FAIL"],
+                 f"steady size distribution: every peak moved by a factor 2 gives "
+                 f"{number_after(v.rows[0][1], 'changed by'):.3g} per dex, FAIL at tol 0.05")
+
+
+def trap_rows(checks):
+    for shift, expect in ((0, "PASS"), (3, "FAIL")):
+        v = Rows()
+        check.check_trap(v, disc(100.0, lambda d: d.a_frag(), trap_shift=shift), 2)
+        checks.check(v.verdicts("dust trap") == [expect], f"dust trap {shift} cells off the pressure maximum: {expect}")
+
+
+def fragmentation_rows(checks):
+    for factor, expect in ((1.0, "PASS"), (2.5, "FAIL")):
+        v = Rows()
+        check.check_growth_limits(v, disc(100.0, lambda d: factor * d.a_frag()), 2.0, 0.2)
+        checks.check(v.verdicts("fragmentation limit") == [expect] and not v.verdicts("drift"),
+                     f"fragmentation limit, peak at {factor:g} a_frag, v_frag = 100: {expect}, no drift rows")
+
+
+def drift_rows(checks):
+    beyond = lambda d: np.arange(len(d.R)) > check.trap_cells(d).max()
+
+    def tilted(d):
+        a_drift, out = d.a_drift(), beyond(d)
+        s = np.polyfit(np.log(d.R[out]), np.log(a_drift[out]), 1)[0]
+        return np.where(out, a_drift * (d.R / d.R[60]) ** (0.3 * s), np.minimum(d.a_frag(), a_drift))
+
+    cases = (("min(a_frag, a_drift)", lambda d: np.minimum(d.a_frag(), d.a_drift()), ["PASS"], ["PASS"]),
+             ("a_frag", lambda d: np.where(beyond(d), d.a_frag(), np.minimum(d.a_frag(), d.a_drift())),
+              ["FAIL"], ["FAIL"]),
+             ("a_drift (R / R_0)^(0.3 s)", tilted, ["PASS"], ["FAIL"]))
+    for name, a_peak, limit, shape in cases:
+        v = Rows()
+        d = disc(1000.0, a_peak)
+        check.check_growth_limits(v, d, 2.0, 0.2)
+        ok = v.verdicts("drift limit") == limit and v.verdicts("drift-limited shape") == shape
+        text = next(r[1] for r in v.rows if r[1].startswith("drift-limited shape"))
+        s_peak, s_drift = number_after(text, "goes as R^"), number_after(text, "a_drift's R^")
+        if name.startswith("min"):
+            ok = ok and abs(s_peak / s_drift - 1) < 0.02 and -1.77 <= s_drift <= -1.5
+        checks.check(ok, f"drift rows, peak at {name}: drift limit {limit[0]}, shape {shape[0]} "
+                         f"(peak R^{s_peak:.3g}, a_drift R^{s_drift:.3g})")
+
+
+def settling_rows(checks):
+    for scale, expect in ((1.0, "PASS"), (1.5, "FAIL")):
+        v = Rows()
+        check.check_settling(v, disc(100.0, lambda d: d.a_frag(), height=lambda d, St: scale), 6.0, 0.3)
+        rows = [r[1] for r in v.rows if r[1].startswith("settling")]
+        errors = [number_after(r, "relative") for r in rows]
+        ok = v.verdicts("settling") == [expect] * 3 and (scale != 1.0 or max(errors) < 0.01)
+        checks.check(ok, f"settling, h_d = {scale:g} x Takeuchi & Lin's at 3 sizes: {expect}, "
+                         f"relative errors {', '.join(f'{e:.3g}' for e in errors)}")
+
+
+def temperature_rows(checks):
+    """T(R, theta) = mid * T_iso(R) at the mid-plane rising to surface * T_bb(R) at the top cell."""
+    for mid, surface, expect in ((0.9, 1.2, ["PASS", "PASS"]), (1.1, 1.2, ["PASS", "FAIL"]),
+                                 (0.9, 0.95, ["FAIL", "PASS"])):
+        d = disc(100.0, lambda d: d.a_frag())
+        d.radiation = {"star_T_eff": 4500.0, "star_radius": 1.7}
+        T_iso = 159.1000339385544 * (d.R / AU) ** -0.5
+        T_bb = 4500.0 * np.sqrt(1.7 * R_SUN / (2 * d.R))
+        x = np.linspace(0.0, 1.0, d.Z.shape[1])[None, :]
+        d.T_gas = (mid * T_iso)[:, None] * (1 - x) + (surface * T_bb)[:, None] * x
+        v = Rows()
+        check.check_temperature(v, d, 159.1000339385544)
+        checks.check(v.verdicts("super-heated") + v.verdicts("cooler") == expect,
+                     f"temperature rows, mid-plane {mid:g} T_iso, top {surface:g} T_bb: super-heated surface "
+                     f"{expect[0]}, cooler interior {expect[1]}")
+
+
+checks = Checks()
+steady_rows(checks)
+trap_rows(checks)
+fragmentation_rows(checks)
+drift_rows(checks)
+settling_rows(checks)
+temperature_rows(checks)
+sys.exit(checks.finish())
