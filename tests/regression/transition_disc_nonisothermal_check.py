@@ -13,14 +13,21 @@ Checks:
     mass budget (1e-10) pass;
   * a run stopped after 40 steps and restarted ends bit-identical to one run in
     every snapshot field (T and the radiation energy included) and in the
-    history's schedule columns (calls of each sub-solver, temperature updates).
+    history's schedule columns (calls of each sub-solver, temperature updates);
+  * transition.dust_from: a run started from the checkpoint of an isothermal run
+    (transition_disc_ci.toml, 60 steps) begins with that run's dust, every
+    species' density and velocities equal to the checkpoint's to the bit, at
+    t = 0; the source must exist (refused by --check), and a checkpoint of
+    another grid is refused at set-up with an error naming the differing key.
 """
+import glob
 import os
 import re
 import shutil
 import sys
 import tomllib
 
+import h5py
 import numpy as np
 
 from harness import Checks, run
@@ -76,4 +83,34 @@ cols = ["step", "time", "temperature_calls", "temperature_updates", "coagulation
 same = [c for c in cols if h[c].tobytes() != hs[c].tobytes()]
 checks.check(not same, "restart: history schedule columns identical (" + ", ".join(cols) + ")" +
              (f"; differ: {same}" if same else ""))
+
+
+def dust_from_rows(checks):
+    """transition.dust_from: the initial dust of a new run is an isothermal run's checkpointed dust."""
+    iso = os.path.join(work, "iso")
+    run([exe, os.path.join(os.path.dirname(deck), "transition_disc_ci.toml"), f"output.dir={iso}", "run.max_steps=60"])
+    source = sorted(glob.glob(os.path.join(iso, "checkpoint_*.h5")))[-1]
+    target = os.path.join(work, "from_iso")
+    run([exe, deck, f"output.dir={target}", f"transition.dust_from={source}", "run.max_steps=2"])
+    first = mote.Snapshot(mote.list_snapshots(target)[0])
+    with h5py.File(source, "r") as f:
+        W = f["/state/dust_W"][...]
+    names = {0: "rho", 1: "vR", 2: "vphi", 3: "vZ"}
+    differ = [f"dust_{v}_{s}" for s in range(W.shape[2]) for k, v in names.items()
+              if first.fields[f"dust_{v}_{s}"].tobytes() != np.ascontiguousarray(W[:, :, s, k]).tobytes()]
+    checks.check(first.time == 0 and not differ and W.shape[2] > 1,
+                 f"transition.dust_from: the first snapshot (t = {first.time}) holds the checkpoint's dust, "
+                 f"{W.shape[2]} species x (rho, vR, vphi, vZ) bit-identical" + (f" (differ: {differ[:4]})" if differ else ""))
+    missing = run([exe, "--check", deck, "transition.dust_from=" + os.path.join(work, "none.h5")], expect=2)
+    checks.check("transition.dust_from" in missing.stderr and "cannot be opened" in missing.stderr,
+                 "transition.dust_from naming no file is refused by --check")
+    other = run([exe, deck, f"output.dir={os.path.join(work, 'other_grid')}", f"transition.dust_from={source}",
+                 "grid.nr=20"], expect=None)
+    checks.check(other.returncode != 0 and "grid.nr = 16 in the checkpoint, 20 now" in other.stderr
+                 and not mote.list_snapshots(os.path.join(work, "other_grid")),
+                 f"a checkpoint of another grid is refused before the first snapshot (exit {other.returncode}), "
+                 "naming grid.nr with both values")
+
+
+dust_from_rows(checks)
 sys.exit(checks.finish())

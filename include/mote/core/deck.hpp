@@ -54,6 +54,8 @@ class Deck {
   /// The keys whose resolved values differ from this deck's in `other` (same schema), in declaration order.
   std::vector<KeyChange> changes_to(const Deck& other) const;
   const std::string& source() const { return source_; }
+  /// The schema the deck was validated against.
+  const DeckSchema& schema() const { return *schema_; }
 
  private:
   /// Thrown when a rule reads a key whose value was rejected: that rule is skipped,

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
@@ -37,5 +38,14 @@ std::string deck_stored_in(const std::string& checkpoint, const core::Comm& comm
 /// both values, or with `force` a warning per change.
 void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, const core::DeckSchema& schema,
                         const std::string& problem, bool force, const core::Comm& comm);
+
+/// Vets `checkpoint`, named by deck key `key`, as the source of part of a new run's initial state (not a restart:
+/// the new run's clock starts at 0): it must be sound (checkpoint_defect) and belong to `problem` (else a
+/// core::InputError), and the deck stored in it (parsed with `deck`'s schema) must equal `deck` in every key that
+/// starts with one of `prefixes`, those that give the stored state its meaning (grid, units, size grid); a
+/// core::DeckError names each differing key with both values.
+void check_initial_state_source(const std::string& checkpoint, const std::string& key, const core::Deck& deck,
+                                const std::string& problem, const std::vector<std::string>& prefixes,
+                                const core::Comm& comm);
 
 }  // namespace mote::io
