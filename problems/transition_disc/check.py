@@ -3,7 +3,7 @@
 
     check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
              [--frag-factor 2] [--drift-slope-tol 0.2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
-             [--iso-T-ref 159.1]
+             [--iso-T-ref 159.1] [--cool-from 6]
 
 Everything is computed here from the snapshots and the history, independently
 of the C++ code. Grid: cell centres R_i, Z_ij = R_i tan theta_j, column widths
@@ -56,9 +56,9 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
   * non-isothermal runs (a [radiation] table): a super-heated surface layer,
     max over theta of T above the blackbody equilibrium T_* (R_* / 2R)^1/2 at
     every radius beyond the 5 au cavity, and a cooler interior, the mid-plane T
-    below the isothermal run's --iso-T-ref (R/au)^-1/2 at --radius and every
-    radius beyond it (RBO24 sec. 7.1 and Fig. 16-17: the cooler mid-plane at
-    6 au lowers the scale heights); the trap's mid-plane range is reported, its
+    below the isothermal run's --iso-T-ref (R/au)^-1/2 from the cell nearest
+    --cool-from (au, 6) to the outer edge (RBO24 sec. 7.1 and Fig. 16-17: the
+    cooler mid-plane at 6 au lowers the scale heights); the trap's mid-plane range is reported, its
     inner cells face the star across the cavity (the wall).
 
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
@@ -304,8 +304,8 @@ def report_sweeping(v, d):
 
 def check_temperature(v, d, T_ref, radius):
     """Non-isothermal run: the surface layer above the blackbody equilibrium T_* (R_* / 2 R)^1/2 at every radius of
-    the gas disc (R > the cavity's 5 au), and the mid-plane below the isothermal run's T_ref (R/au)^-1/2 from
-    `radius` (au) out."""
+    the gas disc (R > the cavity's 5 au), and the mid-plane below the isothermal run's T_ref (R/au)^-1/2 from the
+    cell nearest `radius` (au) to the outer edge."""
     R_sun, au = 6.957e10, 1.495978707e13
     T_star, R_star = d.radiation.get("star_T_eff", 4500.0), d.radiation.get("star_radius", 1.7) * R_sun
     disc = np.nonzero(d.R / au > 5.0)[0]
@@ -440,6 +440,8 @@ def main():
     p.add_argument("--mass-tol", type=float, default=1e-10)
     p.add_argument("--iso-T-ref", type=float, default=159.1000339385544,
                    help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
+    p.add_argument("--cool-from", type=float, default=6.0,
+                   help="au: the cooler interior is asserted from the cell nearest this radius outward")
     args = p.parse_args()
     paths = mote.list_snapshots(args.run_dir)
     if not paths:
@@ -462,7 +464,7 @@ def main():
         report_sweeping(v, d)
     check_mass(v, args.run_dir, args.mass_tol)
     if d.radiation:
-        check_temperature(v, d, args.iso_T_ref, radius)
+        check_temperature(v, d, args.iso_T_ref, args.cool_from)
     else:
         v.info("isothermal run: the non-isothermal checks (super-heated surface, cooler interior) need [radiation]")
     if args.plot:

@@ -54,6 +54,13 @@ std::string problem_stored_in(const std::string& checkpoint, const core::Comm& c
   return file.read_attribute_string("/", "problem");
 }
 
+/// A core::InputError unless `checkpoint` was written by `problem` (`what` opens the message).
+void refuse_other_problem(const std::string& checkpoint, const std::string& problem, const std::string& what,
+                          const core::Comm& comm) {
+  if (const std::string stored = problem_stored_in(checkpoint, comm); stored != problem)
+    throw core::InputError(what + " '" + checkpoint + "' belongs to problem '" + stored + "', not '" + problem + "'");
+}
+
 std::string describe(const core::KeyChange& c) {
   return c.key + " = " + c.before + " in the checkpoint, " + c.after + " now";
 }
@@ -62,9 +69,7 @@ std::string describe(const core::KeyChange& c) {
 
 void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, const core::DeckSchema& schema,
                         const std::string& problem, bool force, const core::Comm& comm) {
-  if (const std::string stored = problem_stored_in(checkpoint, comm); stored != problem)
-    throw core::InputError("checkpoint '" + checkpoint + "' belongs to problem '" + stored + "', not '" + problem +
-                           "'");
+  refuse_other_problem(checkpoint, problem, "checkpoint", comm);
   std::vector<core::KeyChange> changes;
   try {
     changes =
@@ -99,23 +104,27 @@ void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, c
 }
 
 void check_initial_state_source(const std::string& checkpoint, const std::string& key, const core::Deck& deck,
-                                const std::string& problem, const std::vector<std::string>& prefixes,
+                                const std::string& problem, const std::vector<std::string>& keys,
                                 const core::Comm& comm) {
   if (const std::string defect = checkpoint_defect(checkpoint, comm); !defect.empty())
     throw core::InputError(key + ": checkpoint '" + checkpoint + "' cannot be used: " + defect);
-  if (const std::string stored = problem_stored_in(checkpoint, comm); stored != problem)
-    throw core::InputError(key + ": checkpoint '" + checkpoint + "' belongs to problem '" + stored + "', not '" +
-                           problem + "'");
-  const auto changes =
-      core::Deck::parse(deck_stored_in(checkpoint, comm), "deck stored in " + checkpoint, deck.schema())
-          .changes_to(deck);
+  refuse_other_problem(checkpoint, problem, key + ": checkpoint", comm);
+  std::vector<core::KeyChange> changes;
+  try {
+    changes = core::Deck::parse(deck_stored_in(checkpoint, comm), "deck stored in " + checkpoint, deck.schema())
+                  .changes_to(deck);
+  } catch (const std::exception& e) {
+    throw core::DeckError(key + ": cannot compare the deck with the one stored in checkpoint '" + checkpoint +
+                          "': " + e.what());
+  }
+  const auto named = [&keys](const std::string& dotted) {
+    for (const auto& k : keys)
+      if (k.back() == '.' ? dotted.rfind(k, 0) == 0 : dotted == k) return true;
+    return false;
+  };
   std::string differing;
   for (const auto& c : changes)
-    for (const auto& prefix : prefixes)
-      if (c.key.rfind(prefix, 0) == 0) {
-        differing += "\n  " + describe(c);
-        break;
-      }
+    if (named(c.key)) differing += "\n  " + describe(c);
   if (!differing.empty())
     throw core::DeckError(key + ": the deck differs from the one stored in checkpoint '" + checkpoint +
                           "' in keys that give its state a meaning:" + differing);

@@ -13,7 +13,8 @@ trap for v_frag = 1000 cm/s); each column's sigma_d(m) is a log-normal whose
 peak is put at a chosen size a_peak(R); each species' vertical profile is a
 Gaussian of a chosen scale height. Checks:
   * steady state: sigma_d(m, R) scaled by 1 + eps between 1e5 and 3e5 yr gives
-    eps / (1 + eps) / log10 3, to 1e-12; PASS at 0.05, FAIL at 0.2 (tol 0.1);
+    eps / (1 + eps) / log10 3 (to 1e-3: the row prints 3 digits); PASS at 0.05,
+    FAIL at 0.48 (tol 0.1);
   * steady size distribution: 0 (to 1e-12) for a pure scaling (PASS), FAIL when every
     column's peak moves by a factor 2 (tol 0.05);
   * dust trap: PASS at the pressure maximum, FAIL 3 cells outward (2 cells);

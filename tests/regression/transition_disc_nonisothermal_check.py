@@ -17,8 +17,9 @@ Checks:
   * transition.dust_from: a run started from the checkpoint of an isothermal run
     (transition_disc_ci.toml, 60 steps) begins with that run's dust, every
     species' density and velocities equal to the checkpoint's to the bit, at
-    t = 0; the source must exist (refused by --check), and a checkpoint of
-    another grid is refused at set-up with an error naming the differing key.
+    t = 0; a restart of that run continues without the source; a missing
+    source and a checkpoint of another grid are refused at set-up (exit 2,
+    no snapshot), the latter naming the differing key with both values.
 """
 import glob
 import os
@@ -101,9 +102,19 @@ def dust_from_rows(checks):
     checks.check(first.time == 0 and not differ and W.shape[2] > 1,
                  f"transition.dust_from: the first snapshot (t = {first.time}) holds the checkpoint's dust, "
                  f"{W.shape[2]} species x (rho, vR, vphi, vZ) bit-identical" + (f" (differ: {differ[:4]})" if differ else ""))
-    missing = run([exe, "--check", deck, "transition.dust_from=" + os.path.join(work, "none.h5")], expect=2)
-    checks.check("transition.dust_from" in missing.stderr and "cannot be opened" in missing.stderr,
-                 "transition.dust_from naming no file is refused by --check")
+    missing = run([exe, deck, f"output.dir={os.path.join(work, 'missing')}",
+                   "transition.dust_from=" + os.path.join(work, "none.h5")], expect=None)
+    checks.check(missing.returncode == 2 and "transition.dust_from" in missing.stderr
+                 and "cannot be used" in missing.stderr and not mote.list_snapshots(os.path.join(work, "missing")),
+                 f"transition.dust_from naming no file is refused at set-up (exit {missing.returncode}), before the "
+                 "first snapshot")
+    os.rename(source, source + ".moved")
+    again = run([exe, "--restart", "latest", deck, f"output.dir={target}", f"transition.dust_from={source}",
+                 "run.max_steps=4"], expect=None)
+    os.rename(source + ".moved", source)
+    checks.check(again.returncode == 0 and "restarted from" in again.stdout and mote.last_snapshot(target).step == 4,
+                 f"a restart of that run does not read the source again: moved away, the run continues to step 4 "
+                 f"(exit {again.returncode})")
     other = run([exe, deck, f"output.dir={os.path.join(work, 'other_grid')}", f"transition.dust_from={source}",
                  "grid.nr=20"], expect=None)
     checks.check(other.returncode != 0 and "grid.nr = 16 in the checkpoint, 20 now" in other.stderr

@@ -41,11 +41,11 @@ void check_restart_deck(const std::string& checkpoint, const core::Deck& deck, c
 
 /// Vets `checkpoint`, named by deck key `key`, as the source of part of a new run's initial state (not a restart:
 /// the new run's clock starts at 0): it must be sound (checkpoint_defect) and belong to `problem` (else a
-/// core::InputError), and the deck stored in it (parsed with `deck`'s schema) must equal `deck` in every key that
-/// starts with one of `prefixes`, those that give the stored state its meaning (grid, units, size grid); a
-/// core::DeckError names each differing key with both values.
+/// core::InputError), and the deck stored in it (parsed with `deck`'s schema) must give the same value as `deck`
+/// to every key in `keys` (a name ending in '.' stands for its whole table), those that give the stored state its
+/// meaning (grid, units, size grid); a core::DeckError names each differing key with both values.
 void check_initial_state_source(const std::string& checkpoint, const std::string& key, const core::Deck& deck,
-                                const std::string& problem, const std::vector<std::string>& prefixes,
+                                const std::string& problem, const std::vector<std::string>& keys,
                                 const core::Comm& comm);
 
 }  // namespace mote::io
