@@ -246,7 +246,7 @@ TEST(DiscDriver, DecoupledDustFallsAsTestParticles) {
 /// Decoupled dust (no drag) released at rest in vertical columns over theta in
 /// [theta_min, 0.3] with `ntheta` rows and closed sides, run for `orbits` orbital
 /// periods at 10 au; returns its primitives on the host.
-Kokkos::View<double****, Kokkos::HostSpace> decoupled_columns(bool both_hemispheres, int rows, double orbits) {
+HostView<Real****> decoupled_columns(bool both_hemispheres, int rows, double orbits) {
   // Explicit edges, the same numbers in both grids, so that the two-hemisphere grid is
   // mirror-symmetric to the last bit (a rounding asymmetry tips the Roe average at the
   // mid-plane, eq. 11, to one side).
