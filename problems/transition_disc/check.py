@@ -3,7 +3,7 @@
 
     check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
              [--frag-factor 2] [--drift-slope-tol 0.2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
-             [--iso-T-ref 159.1] [--cool-from 6]
+             [--iso-T-ref 159.1] [--cool-from 6] [--against OTHER_RUN [--against-tol 0.05]]
 
 Everything is computed here from the snapshots and the history, independently
 of the C++ code. Grid: cell centres R_i, Z_ij = R_i tan theta_j, column widths
@@ -60,6 +60,11 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
     --cool-from (au, 6) to the outer edge (RBO24 sec. 7.1 and Fig. 16-17: the
     cooler mid-plane at 6 au lowers the scale heights); the trap's mid-plane range is reported, its
     inner cells face the star across the cavity (the wall).
+
+--against OTHER_RUN compares the last snapshot with OTHER_RUN's snapshot at the
+same time (another deck or rule on the same grid): the mass-weighted L1
+distances sum |d sigma_d(m, R)| / sum sigma_d and sum |d rho_s| dV / sum rho_s dV
+over every cell and species, both <= --against-tol.
 
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
@@ -335,6 +340,24 @@ def check_mass(v, run_dir, tol):
            f"the floor added {h['dust_floor_added'][-1] / h['dust_mass'][0]:.3g}")
 
 
+def check_against(v, d, other_dir, tol):
+    """The last snapshot against the other run's snapshot at the same time: the
+    mass-weighted L1 distances of sigma_d(m, R) and of the dust mass in each cell
+    and species (m = rho dV, both hemispheres)."""
+    match = [q for q in mote.list_snapshots(other_dir) if abs(Disc(mote.read_snapshot(q)).time_yr - d.time_yr)
+             <= 1e-9 * d.time_yr]
+    if not match:
+        v.check(False, f"against {other_dir}: no snapshot at t = {d.time_yr:.4g} yr")
+        return
+    o = Disc(mote.read_snapshot(match[0]))
+    sigma = np.sum(np.abs(d.sigma_m - o.sigma_m)) / np.sum(o.sigma_m)
+    dV = (d.R * np.gradient(d.R))[None, :, None] * d.dZ[None]  # R dR dZ: the cells' volume per radian
+    cells = np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
+    v.check(max(sigma, cells) <= tol,
+            f"against {other_dir} at {d.time_yr:.4g} yr: sigma_d(m, R) differs by {sigma:.3g}, the dust of each cell "
+            f"and species by {cells:.3g} (mass-weighted L1) <= {tol:g}")
+
+
 def plot(d, out, radius):
     import matplotlib
 
@@ -442,6 +465,9 @@ def main():
                    help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
     p.add_argument("--cool-from", type=float, default=6.0,
                    help="au: the cooler interior is asserted from the cell nearest this radius outward")
+    p.add_argument("--against", metavar="RUN_DIR",
+                   help="compare the last snapshot with this run's at the same time (another deck of the same grid)")
+    p.add_argument("--against-tol", type=float, default=0.05)
     args = p.parse_args()
     paths = mote.list_snapshots(args.run_dir)
     if not paths:
@@ -463,6 +489,8 @@ def main():
     if d.v_frag >= 1000:
         report_sweeping(v, d)
     check_mass(v, args.run_dir, args.mass_tol)
+    if args.against:
+        check_against(v, d, args.against, args.against_tol)
     if d.radiation:
         check_temperature(v, d, args.iso_T_ref, args.cool_from)
     else:

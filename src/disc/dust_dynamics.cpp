@@ -135,6 +135,14 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc(
           "Dust-to-gas floor: the floor of a cell is max(dust.floor, floor_ratio rho_g); cells below 10 x their floor "
           "do not limit the time-step (cuDisc: 1e-10).");
+  s.real("dust.trace_ratio")
+      .default_value(0.0)
+      .min(0.0)
+      .less_than(1.0)
+      .doc(
+          "Dust-to-gas ratio (per species) below which a cell holds only a trace of that species: it does not limit "
+          "the time-step, and its v_R and v_Z are capped at dust.cfl_advection of a cell per step (a velocity "
+          "ceiling), which keeps it stable at any step. 0: no trace cells.");
   s.real("dust.cfl_advection").default_value(0.4).greater_than(0.0).max(1.0).doc("C_adv of eq. 18.");
   s.real("dust.cfl_diffusion").default_value(0.2).greater_than(0.0).max(1.0).doc("C_diff of eq. 19.");
   s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
@@ -156,6 +164,7 @@ DustSettings DustSettings::from_deck(const core::Deck& d, const units::UnitSyste
   st.rho_grain = d.real("dust.rho_grain") / u.density();
   st.floor = d.real("dust.floor");
   st.floor_ratio = d.real("dust.floor_ratio");
+  st.trace_ratio = d.real("dust.trace_ratio");
   st.cfl_advection = d.real("dust.cfl_advection");
   st.cfl_diffusion = d.real("dust.cfl_diffusion");
   st.diffusion = d.boolean("dust.diffusion");
@@ -440,16 +449,17 @@ void DustDynamics::compute_fluxes(const View4& w) {
       });
 }
 
-void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double source_lead, const View4& w_out,
-                                 bool update_q) {
+void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double source_lead, double dt_step,
+                                 const View4& w_out, bool update_q) {
   const int ng = grid_.ng, nr = grid_.nr, nt = grid_.nt, ns = ns_;
   auto Q_ = Q, FR = flux_R_, FZ = flux_Z_, B = budget;
   auto V = grid_.V;
-  auto Rc = grid_.Rc;
+  auto Rc = grid_.Rc, dR = grid_.dR, tan_te = grid_.tan_te;
   auto rho_g = gas_.rho, vgR = gas_.vR, vgphi = gas_.vphi, vgZ = gas_.vZ;
   auto grav = gravity_;
   auto stopping_time = stopping_time_;
   const Real dt = dt_stage, lead = source_lead, floor = settings_.floor, floor_ratio = settings_.floor_ratio;
+  const Real trace = settings_.trace_ratio, ca = settings_.cfl_advection, h = dt_step;
   const bool gravity = settings_.gravity, drag = settings_.drag;
   const bool curvature = settings_.gravity && grid_.geometry == mesh::Geometry::Cylindrical;
   for_cells(
@@ -513,6 +523,10 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
           vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
           vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
         }
+        if (is_trace(rho, trace, rho_g(i, j))) {
+          vR = trace_velocity(vR, ca, dR(i), h);
+          vZ = trace_velocity(vZ, ca, Rc(i) * (tan_te(j + 1) - tan_te(j)), h);
+        }
         w_out(i, j, s, kRho) = rho;
         w_out(i, j, s, kVR) = vR;
         w_out(i, j, s, kVphi) = vphi;
@@ -527,16 +541,34 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
       });
 }
 
+void DustDynamics::cap_trace_velocities(double dt) {
+  auto W_ = W, Q_ = Q;
+  auto Rc = grid_.Rc, dR = grid_.dR, tan_te = grid_.tan_te;
+  auto rho_g = gas_.rho;
+  const Real trace = settings_.trace_ratio, ca = settings_.cfl_advection, h = dt;
+  for_cells(
+      "disc::dust_trace_ceiling", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(), ns_,
+      KOKKOS_LAMBDA(int i, int j, int s) {
+        const Real rho = W_(i, j, s, kRho);
+        if (!is_trace(rho, trace, rho_g(i, j))) return;
+        W_(i, j, s, kVR) = trace_velocity(W_(i, j, s, kVR), ca, dR(i), h);
+        W_(i, j, s, kVZ) = trace_velocity(W_(i, j, s, kVZ), ca, Rc(i) * (tan_te(j + 1) - tan_te(j)), h);
+        Q_(i, j, s, kMomR) = rho * W_(i, j, s, kVR);
+        Q_(i, j, s, kMomZ) = rho * W_(i, j, s, kVZ);
+      });
+}
+
 void DustDynamics::step(double dt) {
   // (i) first-order fluxes at t^n; (ii) half-step sources from P^n; (iii, iv) primitives + drag.
+  if (settings_.trace_ratio > 0) cap_trace_velocities(dt);
   fill_ghosts(W);
   compute_fluxes<false>(W);
-  advance_stage(W, 0.5 * dt, 0.0, W_half_, false);
+  advance_stage(W, 0.5 * dt, 0.0, dt, W_half_, false);
   // Boundary conditions again after step (iv); (v-viii) second-order fluxes at t^{n+1/2}.
   fill_ghosts(W_half_);
   compute_fluxes<true>(W_half_);
   account_outflow(dt);
-  advance_stage(W_half_, dt, 0.5 * dt, W, true);
+  advance_stage(W_half_, dt, 0.5 * dt, dt, W, true);
   fill_ghosts(W);
 }
 
@@ -550,7 +582,7 @@ struct CellStepLimit {
   RealView1 dR, Rc, tan_te, sc;
   RealView2 nu, rho_g;
   RealView3 g, stopping_time;
-  Real ca, cd, floor, floor_ratio;
+  Real ca, cd, floor, floor_ratio, trace_ratio;
   bool drag, diffuse, radial, gravity, curvature;
 
   KOKKOS_INLINE_FUNCTION static void keep(Real t, int k, Real& m, int& kind) {
@@ -569,8 +601,11 @@ struct CellStepLimit {
       const Real dx2 = along_R ? dR(i) * dR(i) : dZ * dZ;
       if (D > 0) keep(cd * dx2 / D, along_R ? Kind::kDiffusionR : Kind::kDiffusionZ, m, kind);
     }
-    // Advection and sources only where there is dust (cells near the floor move with the gas).
-    if (W(i, j, s, kRho) < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j))) return m;
+    // Advection and sources only where there is dust (cells near the floor move with the
+    // gas; trace dust is held below its velocity ceiling instead).
+    const Real rho = W(i, j, s, kRho);
+    if (rho < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j)) || is_trace(rho, trace_ratio, rho_g(i, j)))
+      return m;
     const Real vR = math::fabs(W(i, j, s, kVR)), vZ = math::fabs(W(i, j, s, kVZ));
     if (radial && vR > 0) keep(ca * dR(i) / vR, Kind::kAdvectionR, m, kind);
     if (vZ > 0) keep(ca * dZ / vZ, Kind::kAdvectionZ, m, kind);
@@ -606,6 +641,7 @@ CellStepLimit cell_step_limit(const mesh::Grid& grid, const DustSettings& st, co
           st.cfl_diffusion,
           st.floor,
           st.floor_ratio,
+          st.trace_ratio,
           st.drag,
           st.diffusion,
           st.radial_fluxes,
@@ -644,7 +680,7 @@ const char* DustDynamics::StepLimit::describe(int kind) {
     case kSourceZ:
       return "gravity along Z (dust.cfl_advection)";
     default:
-      return "nothing (no dust above 10 x its floor, no diffusion)";
+      return "nothing (no dust above 10 x its floor or its trace ratio, no diffusion)";
   }
 }
 
