@@ -63,8 +63,8 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
 
 --against OTHER_RUN compares the last snapshot with OTHER_RUN's snapshot at the
 same time (another deck or rule on the same grid): the mass-weighted L1
-distances sum |d sigma_d(m, R)| / sum sigma_d and sum |d rho_s| dV / sum rho_s dV
-over every cell and species, both <= --against-tol.
+distances sum |d sigma_d(m, R)| R dR / sum sigma_d R dR and
+sum |d rho_s| dV / sum rho_s dV over every cell and species, both <= --against-tol.
 
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
@@ -341,17 +341,21 @@ def check_mass(v, run_dir, tol):
 
 
 def check_against(v, d, other_dir, tol):
-    """The last snapshot against the other run's snapshot at the same time: the
-    mass-weighted L1 distances of sigma_d(m, R) and of the dust mass in each cell
-    and species (m = rho dV, both hemispheres)."""
+    """The last snapshot against the other run's snapshot at the same time, on the same
+    grid: the mass-weighted L1 distances of sigma_d(m, R) (weight: the annulus area
+    R dR) and of the dust mass of every cell and species (R dR dZ)."""
     match = [q for q in mote.list_snapshots(other_dir) if abs(Disc(mote.read_snapshot(q)).time_yr - d.time_yr)
              <= 1e-9 * d.time_yr]
     if not match:
         v.check(False, f"against {other_dir}: no snapshot at t = {d.time_yr:.4g} yr")
         return
     o = Disc(mote.read_snapshot(match[0]))
-    sigma = np.sum(np.abs(d.sigma_m - o.sigma_m)) / np.sum(o.sigma_m)
-    dV = (d.R * np.gradient(d.R))[None, :, None] * d.dZ[None]  # R dR dZ: the cells' volume per radian
+    if o.rho.shape != d.rho.shape or not np.allclose(o.R_nodes, d.R_nodes, rtol=1e-12, atol=0):
+        v.check(False, f"against {other_dir}: another grid or size grid ({o.rho.shape} against {d.rho.shape})")
+        return
+    area = d.R * np.diff(d.R_nodes[:, 0])
+    sigma = np.sum(np.abs(d.sigma_m - o.sigma_m) * area) / np.sum(o.sigma_m * area)
+    dV = area[None, :, None] * d.dZ[None]
     cells = np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
     v.check(max(sigma, cells) <= tol,
             f"against {other_dir} at {d.time_yr:.4g} yr: sigma_d(m, R) differs by {sigma:.3g}, the dust of each cell "

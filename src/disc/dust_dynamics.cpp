@@ -467,6 +467,7 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
         // Flux divergence (eq. 8-9) from Q^n.
         Real q[kDustVars];
         const Real inv_v = dt / V(i, j);
+        const Real rho_n = Q_(i, j, s, kRho);
         for (int k = 0; k < kDustVars; ++k)
           q[k] = Q_(i, j, s, k) - inv_v * (FR(i + 1, j, s, k) - FR(i, j, s, k) + FZ(i, j + 1, s, k) - FZ(i, j, s, k));
         // Explicit sources (eq. 6) evaluated with the source-stage primitives.
@@ -523,10 +524,12 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
           vphi = dust::implicit_drag(vphi, vgphi(i, j), dt, ts);
           vZ = dust::implicit_drag(vZ, vgZ(i, j), dt, ts);
         }
-        if (is_trace(rho, trace, rho_g(i, j))) {
-          vR = trace_velocity(vR, ca, dR(i), h);
-          vZ = trace_velocity(vZ, ca, Rc(i) * (tan_te(j + 1) - tan_te(j)), h);
-        }
+        // With trace cells on, dust the step skipped at t^n or skips now stays below its ceiling.
+        const bool skipped =
+            skips_step_limit(rho_n, f, trace, rho_g(i, j)) || skips_step_limit(rho, f, trace, rho_g(i, j));
+        if (trace > 0 && skipped)
+          trace_ceiling(vR, vZ, ca, dR(i), Rc(i) * (tan_te(j + 1) - tan_te(j)),
+                        math::max(math::fabs(tan_te(j)), math::fabs(tan_te(j + 1))), h);
         w_out(i, j, s, kRho) = rho;
         w_out(i, j, s, kVR) = vR;
         w_out(i, j, s, kVphi) = vphi;
@@ -546,15 +549,19 @@ void DustDynamics::cap_trace_velocities(double dt) {
   auto Rc = grid_.Rc, dR = grid_.dR, tan_te = grid_.tan_te;
   auto rho_g = gas_.rho;
   const Real trace = settings_.trace_ratio, ca = settings_.cfl_advection, h = dt;
+  const Real floor = settings_.floor, floor_ratio = settings_.floor_ratio;
   for_cells(
       "disc::dust_trace_ceiling", grid_.i_begin(), grid_.i_end(), grid_.j_begin(), grid_.j_end(), ns_,
       KOKKOS_LAMBDA(int i, int j, int s) {
         const Real rho = W_(i, j, s, kRho);
-        if (!is_trace(rho, trace, rho_g(i, j))) return;
-        W_(i, j, s, kVR) = trace_velocity(W_(i, j, s, kVR), ca, dR(i), h);
-        W_(i, j, s, kVZ) = trace_velocity(W_(i, j, s, kVZ), ca, Rc(i) * (tan_te(j + 1) - tan_te(j)), h);
-        Q_(i, j, s, kMomR) = rho * W_(i, j, s, kVR);
-        Q_(i, j, s, kMomZ) = rho * W_(i, j, s, kVZ);
+        if (!skips_step_limit(rho, dust_floor(floor, floor_ratio, rho_g(i, j)), trace, rho_g(i, j))) return;
+        Real vR = W_(i, j, s, kVR), vZ = W_(i, j, s, kVZ);
+        trace_ceiling(vR, vZ, ca, dR(i), Rc(i) * (tan_te(j + 1) - tan_te(j)),
+                      math::max(math::fabs(tan_te(j)), math::fabs(tan_te(j + 1))), h);
+        W_(i, j, s, kVR) = vR;
+        W_(i, j, s, kVZ) = vZ;
+        Q_(i, j, s, kMomR) = rho * vR;
+        Q_(i, j, s, kMomZ) = rho * vZ;
       });
 }
 
@@ -603,8 +610,7 @@ struct CellStepLimit {
     }
     // Advection and sources only where there is dust (cells near the floor move with the
     // gas; trace dust is held below its velocity ceiling instead).
-    const Real rho = W(i, j, s, kRho);
-    if (rho < kFloorCflFactor * dust_floor(floor, floor_ratio, rho_g(i, j)) || is_trace(rho, trace_ratio, rho_g(i, j)))
+    if (skips_step_limit(W(i, j, s, kRho), dust_floor(floor, floor_ratio, rho_g(i, j)), trace_ratio, rho_g(i, j)))
       return m;
     const Real vR = math::fabs(W(i, j, s, kVR)), vZ = math::fabs(W(i, j, s, kVZ));
     if (radial && vR > 0) keep(ca * dR(i) / vR, Kind::kAdvectionR, m, kind);

@@ -6,10 +6,10 @@ diffusing into the cavity no longer holds the whole disc at its crossing time.
 
 usage: transition_disc_trace.py EXE WORKDIR DECK
 Checks, to 1000 yr with trace_ratio = 0 (the paper's rule) and 1e-7:
-  * the trace run takes at least 1.5 x fewer steps (measured 1.81 x);
+  * the trace run takes at least 1.5 x fewer steps (measured 1.86 x);
   * problems/transition_disc/check.py --against: sigma_d(m, R), and the dust of
     every cell and species, agree with the run without trace cells to 1 % (mass-
-    weighted L1; measured 9.0e-4 and 8.2e-4);
+    weighted L1; measured 2.85e-4 and 4.98e-4);
   * its dust mass budget closes to 1e-10 (check.py's mass row);
   * a trace run stopped half-way and restarted ends bit-identical.
 """

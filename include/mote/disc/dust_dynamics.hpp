@@ -57,18 +57,27 @@ inline constexpr Real kFloorCflFactor = 10.0;
 /// floor carry no turbulent diffusion flux (as cuDisc).
 inline constexpr Real kGasFloorDiffusionFactor = 1.1;
 
-/// Whether dust of density rho in gas of density rho_g is a trace (dust.trace_ratio):
-/// such a cell neither limits the time-step nor moves faster than it allows.
-KOKKOS_INLINE_FUNCTION bool is_trace(Real rho, Real trace_ratio, Real rho_g) { return rho < trace_ratio * rho_g; }
+/// Whether the time-step skips a species in a cell (density rho, floor f, gas rho_g):
+/// within kFloorCflFactor of its floor, or a trace, below trace_ratio rho_g
+/// (dust.trace_ratio, 0: no trace cells).
+KOKKOS_INLINE_FUNCTION bool skips_step_limit(Real rho, Real f, Real trace_ratio, Real rho_g) {
+  return rho < kFloorCflFactor * f || rho < trace_ratio * rho_g;
+}
 
-/// The velocity ceiling of trace dust: v limited to +-c dx / dt, so that a step of
-/// length dt moves it by at most the fraction c of a cell, as the advection limit
-/// (eq. 18) does for the dust that sets the step. Not in RBO24: cells of trace dust
-/// (decoupled sub-micron grains in an evacuated cavity or above the disc, dust-to-gas
-/// 1e-8) would otherwise hold the step of the whole disc at their own crossing time.
-KOKKOS_INLINE_FUNCTION Real trace_velocity(Real v, Real c, Real dx, Real dt) {
-  const Real vmax = c * dx / dt;
-  return math::min(math::max(v, -vmax), vmax);
+/// The velocity ceiling of the cells the step skips, with trace cells on: (v_R, v_Z)
+/// scaled down together so that a step dt carries at most the fraction c of the cell's
+/// dust out through its radial and theta faces together (donor cell),
+///   dt (|v_R| / dR + (|v_Z| + |v_R| t) / dZ) <= c,
+/// t the larger |tan theta| of its theta faces (their normal velocity over cos theta is
+/// v_Z - v_R tan theta). Not in RBO24: cells of trace dust (decoupled sub-micron
+/// grains in an evacuated cavity or above the disc, dust-to-gas 1e-9 to 1e-7) would
+/// otherwise hold the step of the whole disc at their own crossing time.
+KOKKOS_INLINE_FUNCTION void trace_ceiling(Real& vR, Real& vZ, Real c, Real dR, Real dZ, Real t, Real dt) {
+  const Real courant = dt * (math::fabs(vR) / dR + (math::fabs(vZ) + math::fabs(vR) * t) / dZ);
+  if (courant > c) {
+    vR *= c / courant;
+    vZ *= c / courant;
+  }
 }
 
 struct DustSettings {
@@ -77,7 +86,7 @@ struct DustSettings {
   double rho_grain = 1.0;       // material density, code units
   double floor = 1e-40;         // density floor, code units
   double floor_ratio = 0.0;     // dust-to-gas floor: the floor is max(floor, floor_ratio rho_g)
-  double trace_ratio = 0.0;     // dust-to-gas ratio below which a cell's dust is a trace (see trace_velocity)
+  double trace_ratio = 0.0;     // dust-to-gas ratio below which a cell's dust is a trace (see trace_ceiling)
   double gas_floor = 0.0;       // the gas density floor (gas.rho_floor), code units
   double cfl_advection = 0.4, cfl_diffusion = 0.2;
   bool diffusion = true, drag = true, gravity = true;
@@ -150,13 +159,13 @@ class DustDynamics {
   void compute_slopes(const View<Real****>& w, bool radial);
   /// One stage from Q^n and the fluxes of w_source; source_lead is how far ahead of t^n
   /// w_source's own sources reach (0 in the half step, dt / 2 in the full step).
-  /// w_out's trace dust (dust.trace_ratio) is held below the velocity ceiling of a
-  /// step of length dt_step.
+  /// With trace cells on, the dust the step skipped at t^n or skips in w_out is held
+  /// below the velocity ceiling (trace_ceiling) of a step of length dt_step.
   void advance_stage(const View<Real****>& w_source, double dt_stage, double source_lead, double dt_step,
                      const View<Real****>& w_out, bool update_q);
-  /// Holds the trace dust of W (and its momenta in Q) below the velocity ceiling of a
-  /// step of length dt: what a larger previous step, the initial state or a gas update
-  /// left there.
+  /// Holds the dust the step skips in W (and its momenta in Q) below the velocity
+  /// ceiling of a step of length dt, with trace cells on: what a larger previous step,
+  /// the initial state or a gas update left there.
   void cap_trace_velocities(double dt);
   /// Adds dt times the mass fluxes through the grid's outer faces to the budget.
   void account_outflow(double dt);
