@@ -340,6 +340,15 @@ def check_mass(v, run_dir, tol):
            f"the floor added {h['dust_floor_added'][-1] / h['dust_mass'][0]:.3g}")
 
 
+def distances(d, o):
+    """Mass-weighted L1 distances of disc d from disc o (same grid): of sigma_d(m, R),
+    weight the annulus area R dR, and of the dust of every cell and species, R dR dZ."""
+    area = d.R * np.diff(d.R_nodes[:, 0])
+    sigma = np.sum(np.abs(d.sigma_m - o.sigma_m) * area) / np.sum(o.sigma_m * area)
+    dV = area[None, :, None] * d.dZ[None]
+    return sigma, np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
+
+
 def check_against(v, d, other_dir, tol):
     """The last snapshot against the other run's snapshot at the same time, on the same
     grid: the mass-weighted L1 distances of sigma_d(m, R) (weight: the annulus area
@@ -353,10 +362,7 @@ def check_against(v, d, other_dir, tol):
     if o.rho.shape != d.rho.shape or not np.allclose(o.R_nodes, d.R_nodes, rtol=1e-12, atol=0):
         v.check(False, f"against {other_dir}: another grid or size grid ({o.rho.shape} against {d.rho.shape})")
         return
-    area = d.R * np.diff(d.R_nodes[:, 0])
-    sigma = np.sum(np.abs(d.sigma_m - o.sigma_m) * area) / np.sum(o.sigma_m * area)
-    dV = area[None, :, None] * d.dZ[None]
-    cells = np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
+    sigma, cells = distances(d, o)
     v.check(max(sigma, cells) <= tol,
             f"against {other_dir} at {d.time_yr:.4g} yr: sigma_d(m, R) differs by {sigma:.3g}, the dust of each cell "
             f"and species by {cells:.3g} (mass-weighted L1) <= {tol:g}")
