@@ -141,8 +141,9 @@ void DustSettings::declare(core::DeckSchema& s) {
       .less_than(1.0)
       .doc(
           "Dust-to-gas ratio (per species) below which a cell holds only a trace of that species: it does not limit "
-          "the time-step, and its v_R and v_Z are capped at dust.cfl_advection of a cell per step (a velocity "
-          "ceiling), which keeps it stable at any step. 0: no trace cells.");
+          "the time-step, and its (v_R, v_Z), as those of every cell the step skips (within 10 x the floor too), "
+          "are scaled down so that a step carries at most dust.cfl_advection of the cell's dust out through its "
+          "faces (a velocity ceiling), which keeps it stable at any step. 0: no trace cells (RBO24).");
   s.real("dust.cfl_advection").default_value(0.4).greater_than(0.0).max(1.0).doc("C_adv of eq. 18.");
   s.real("dust.cfl_diffusion").default_value(0.2).greater_than(0.0).max(1.0).doc("C_diff of eq. 19.");
   s.boolean("dust.diffusion").default_value(true).doc("Turbulent diffusion (eq. 15-16).");
@@ -566,7 +567,8 @@ void DustDynamics::cap_trace_velocities(double dt) {
 }
 
 void DustDynamics::step(double dt) {
-  // (i) first-order fluxes at t^n; (ii) half-step sources from P^n; (iii, iv) primitives + drag.
+  // The velocity ceiling of the cells the step skipped (trace cells on); then (i) first-order
+  // fluxes at t^n; (ii) half-step sources from P^n; (iii, iv) primitives + drag.
   if (settings_.trace_ratio > 0) cap_trace_velocities(dt);
   fill_ghosts(W);
   compute_fluxes<false>(W);

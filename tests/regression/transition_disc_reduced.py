@@ -12,7 +12,9 @@ structure RBO24 describe is in place. check.py's rows, each asserted PASS:
 check.py's first row, sigma_d(m, R) itself steady to 0.1 per dex, is printed
 and not asserted: at 1e5 yr the outer disc, whose mass-weighted drift time is
 about 1 Myr, is still filling the trap (problems/transition_disc/README.md).
-About 35 min on two free cores (label slow).
+With the deck's dust.trace_ratio = 1e-6 the run takes 23,600 steps (409,269
+with the paper's rule, 31 min on two free cores); measured 335 s of solver
+time while a CI build and test shared the two cores (label slow).
 
 usage: transition_disc_reduced.py EXE WORKDIR MPIEXEC [ARGS ...]
 """

@@ -28,7 +28,7 @@ paper, trace, split = (os.path.join(work, n) for n in ("paper", "trace", "split"
 run([exe, deck, f"output.dir={paper}", "dust.trace_ratio=0"] + common)
 run([exe, deck, f"output.dir={trace}", "dust.trace_ratio=1e-6"] + common)
 run([exe, deck, f"output.dir={split}", "dust.trace_ratio=1e-6", "run.max_steps=400"] + common)
-run([exe, "--restart", "latest", deck, f"output.dir={split}", "dust.trace_ratio=1e-6"] + common)
+restarted = run([exe, "--restart", "latest", deck, f"output.dir={split}", "dust.trace_ratio=1e-6"] + common)
 checks = Checks()
 
 x, y = mote.last_snapshot(paper), mote.last_snapshot(trace)
@@ -42,6 +42,8 @@ checks.check("PASS mass:" in p.stdout, "check.py: the trace run's mass budget cl
 
 z = mote.last_snapshot(split)
 diff = [n for n in y.fields if y.fields[n].tobytes() != z.fields[n].tobytes()]
+checks.check("restarted from" in restarted.stdout and y.step > 400,
+             f"the split run stopped at step 400 of {y.step} and restarted from its checkpoint")
 checks.check(y.step == z.step and not diff, f"restart: step {z.step} ({y.step}), all {len(y.fields)} snapshot fields "
                                             "bit-identical" + (f" (differ: {diff[:5]})" if diff else ""))
 sys.exit(checks.finish())
