@@ -46,7 +46,7 @@ void sort_by_cell(const IntView1& keys, int n, int ncell, const View<int*>& fill
   par_for(
       "sph::neighbour_cell_zero", 0, ncell, KOKKOS_LAMBDA(int c) { fill(c) = 0; });
   par_for(
-      "sph::neighbour_cell_count", 0, n, KOKKOS_LAMBDA(int i) { Kokkos::atomic_increment(&fill(keys(i))); });
+      "sph::neighbour_cell_count", 0, n, KOKKOS_LAMBDA(int i) { Kokkos::atomic_add(&fill(keys(i)), 1); });
   Kokkos::parallel_scan(
       "sph::neighbour_cell_start", Kokkos::RangePolicy<ExecSpace>(0, ncell + 1),
       KOKKOS_LAMBDA(int c, int& acc, bool final) {
