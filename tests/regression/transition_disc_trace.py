@@ -12,7 +12,7 @@ deck's):
     every cell and species, agree with the run without trace cells to 1 % (mass-
     weighted L1; measured 4.01e-3 and 8.55e-3);
   * its dust mass budget closes to 1e-10 (check.py's mass row);
-  * a trace run stopped half-way and restarted ends bit-identical.
+  * a trace run stopped at step 400 (of 530) and restarted ends bit-identical.
 """
 import os
 import shutil
