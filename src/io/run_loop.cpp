@@ -198,16 +198,18 @@ RunLoop::RunLoop(RunSettings settings, std::string problem, const core::Deck& de
       comm_(comm),
       timers_(timers) {}
 
-double RunLoop::next_snapshot_time(const State& s) const {
+double RunLoop::output_time(long long k) const {
   const auto& times = settings_.snapshot_times;
   if (!times.empty()) {
-    // next_output = k >= 1 is the k-th listed time; past the list (or t_end), the final snapshot.
-    const auto k = static_cast<std::size_t>(s.next_output);
-    return k >= 1 && k <= times.size() ? std::min(settings_.t_end, times[k - 1]) : settings_.t_end;
+    // k >= 1 is the k-th listed time; past the list (or t_end), the final snapshot.
+    const auto i = static_cast<std::size_t>(k);
+    return k >= 1 && i <= times.size() ? std::min(settings_.t_end, times[i - 1]) : settings_.t_end;
   }
   if (settings_.snapshot_dt <= 0.0) return settings_.t_end;
-  return std::min(settings_.t_end, static_cast<double>(s.next_output) * settings_.snapshot_dt);
+  return std::min(settings_.t_end, static_cast<double>(k) * settings_.snapshot_dt);
 }
+
+double RunLoop::next_snapshot_time(const State& s) const { return output_time(s.next_output); }
 
 void RunLoop::write_run_attributes(H5File& file, const State& s) const {
   file.write_attribute("/", "time", s.time);
@@ -388,7 +390,10 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
   s.next_output = file.read_attribute_int("/", "next_output");
-  // A restart may change the snapshot cadence: skip the output times it has already passed.
+  // A restart may change the snapshot cadence or t_end. Back to the first output time after s.time
+  // (a run that ended at t_end has used one index for that final snapshot, which a longer list or
+  // a later t_end would otherwise skip), then past the times it has already passed.
+  while (s.next_output > 1 && output_time(s.next_output - 1) > s.time) s.next_output -= 1;
   while (next_snapshot_time(s) <= s.time && next_snapshot_time(s) < settings_.t_end) s.next_output += 1;
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;

@@ -137,6 +137,34 @@ TEST_F(RunLoopTest, RestartWithAChangedCadenceSkipsPassedTimes) {
   for (int i = 0; i < 5; ++i) EXPECT_NEAR(snapshot_time(i), expected[i], i == 2 ? 1e-12 : 0.0);
 }
 
+TEST_F(RunLoopTest, ContinuingAFinishedRunWritesEveryNewListedTime) {
+  // The final snapshot at t_end takes an output index; a continuation to a later t_end with a
+  // longer list must still write the first new time (it skipped it once, 2026-12-06).
+  Decay first;
+  ASSERT_EQ(run(first, {"output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4]"}), core::kExitFinished);
+  Decay resumed;
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  ASSERT_EQ(run(resumed, {"run.t_end=2.0", "output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4, 1.5, 1.8]"},
+                *checkpoint),
+            core::kExitFinished);
+  const double expected[] = {0.0, 0.1, 0.4, 1.0, 1.5, 1.8, 2.0};
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 7, "h5")));
+}
+
+TEST_F(RunLoopTest, ContinuingAFinishedRunKeepsTheSnapshotCadence) {
+  // The same with output.snapshot_dt: t_end = 0.9 is not on the cadence of 0.25.
+  Decay first;
+  ASSERT_EQ(run(first, {"run.t_end=0.9"}), core::kExitFinished);
+  Decay resumed;
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  ASSERT_EQ(run(resumed, {"run.t_end=1.3"}, *checkpoint), core::kExitFinished);
+  const double expected[] = {0.0, 0.25, 0.5, 0.75, 0.9, 1.0, 1.25, 1.3};
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
+}
+
 TEST_F(RunLoopTest, BadSnapshotTimesAreRefused) {
   Decay sim;
   EXPECT_THROW(run(sim, {"output.snapshot_times=[0.5, 0.2]", "output.snapshot_dt=0"}), core::InputError);

@@ -79,6 +79,8 @@ class RunLoop {
   };
   /// The time loop after the directory is claimed: history, snapshots, checkpoints.
   int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
+  /// The k-th scheduled output time (k >= 1; the final snapshot at t_end past the schedule).
+  double output_time(long long k) const;
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_hdf5_snapshot(Simulation& sim, const State& s);
