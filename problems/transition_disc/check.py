@@ -359,8 +359,12 @@ def check_against(v, d, other_dir, tol):
         v.check(False, f"against {other_dir}: no snapshot at t = {d.time_yr:.4g} yr")
         return
     o = Disc(mote.read_snapshot(match[0]))
-    if o.rho.shape != d.rho.shape or not np.allclose(o.R_nodes, d.R_nodes, rtol=1e-12, atol=0):
-        v.check(False, f"against {other_dir}: another grid or size grid ({o.rho.shape} against {d.rho.shape})")
+    same = lambda x, y: x.shape == y.shape and np.allclose(x, y, rtol=1e-12, atol=0)
+    differ = [name for name, x, y in (("R nodes", o.R_nodes, d.R_nodes), ("Z nodes", o.Z_nodes, d.Z_nodes),
+                                      ("grain sizes", o.a, d.a)) if not same(x, y)]
+    if o.rho.shape != d.rho.shape or differ:
+        v.check(False, f"against {other_dir}: another grid or size grid ({o.rho.shape} against {d.rho.shape}"
+                       f"{'; ' + ', '.join(differ) + ' differ' if differ else ''})")
         return
     sigma, cells = distances(d, o)
     v.check(max(sigma, cells) <= tol,

@@ -28,6 +28,10 @@ Gaussian of a chosen scale height. Checks:
     (s a_drift's slope, 0.5 at R_0 so within the factor 2) fails the shape row only;
   * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
     1.5 x that fails them (tol 0.3);
+  * --against: a run on the same grid whose dust differs by 0.2 % passes at
+    1 % with both distances 0.002/1.002 (to 0.5 %: the row prints 3 digits),
+    by 5 % fails; a run whose theta nodes or grain sizes differ by 1e-9 is
+    refused as another grid, naming what differs;
   * non-isothermal rows: a mid-plane at 0.9 x the isothermal T and a top cell at
     1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both, also with the wall inside
     6 au at 1.2 x; a mid-plane at 1.02 x beyond 15 au fails the cooler interior,
@@ -75,6 +79,7 @@ def gas_disc(v_frag):
     tan_te = np.tan(np.linspace(0.0, np.pi / 4, 401))
     d.Z = d.R[:, None] * (0.5 * (tan_te[1:] + tan_te[:-1]))[None, :]
     d.dZ = d.R[:, None] * np.diff(tan_te)[None, :]
+    d.tan_te = tan_te
     R_au = d.R / AU
     d.Sigma_g = 250.0 / R_au * np.exp(-((5.0 / R_au) ** 10))
     T = 4500.0 * (0.05 / 2) ** 0.25 * np.sqrt(1.7 * R_SUN / d.R)
@@ -220,6 +225,51 @@ def temperature_rows(checks):
                      f"super-heated surface {expect[0]}, cooler interior (from 6 au out) {expect[1]}")
 
 
+def with_nodes(d):
+    """The node coordinates a snapshot carries: R and Z of every (R, theta) node."""
+    R_edges = np.sqrt(d.R[1:] * d.R[:-1])
+    R_edges = np.concatenate([[d.R[0] ** 2 / R_edges[0]], R_edges, [d.R[-1] ** 2 / R_edges[-1]]])
+    d.R_nodes = np.repeat(R_edges[:, None], d.tan_te.size, axis=1)
+    d.Z_nodes = R_edges[:, None] * d.tan_te[None, :]
+    return d
+
+
+def against_rows(checks):
+    """check_against reads the other run through check.mote and check.Disc: both are stubbed to hand it a disc."""
+    base = with_nodes(disc(100.0, lambda d: d.a_frag()))
+    real_mote, real_disc = check.mote, check.Disc
+
+    def other(scale=1.0, tan_te=None, a=None):
+        o = with_nodes(disc(100.0, lambda d: d.a_frag()))
+        o.rho, o.sigma_m = o.rho * scale, o.sigma_m * scale
+        if tan_te is not None:
+            o.tan_te = tan_te
+            with_nodes(o)
+        o.a = o.a if a is None else a
+        return o
+
+    cases = ((other(1.002), "PASS", 0.002 / 1.002), (other(1.05), "FAIL", 0.05 / 1.05),
+             (other(tan_te=base.tan_te * (1 + 1e-9)), "FAIL", None), (other(a=base.a * (1 + 1e-9)), "FAIL", None))
+    try:
+        for o, expect, distance in cases:
+            check.mote = type("Stub", (), {"list_snapshots": staticmethod(lambda run: ["other"]),
+                                           "read_snapshot": staticmethod(lambda path: path)})
+            check.Disc = lambda snap, o=o: o
+            v = Rows()
+            check.check_against(v, base, "other_run", 0.01)
+            text = v.rows[-1][1]
+            if distance is None:
+                ok = v.verdicts("against") == [expect] and "another grid" in text and " differ)" in text
+                what = "refused as another grid"
+            else:
+                measured = (number_after(text, "differs by"), number_after(text, "species by"))
+                ok = v.verdicts("against") == [expect] and all(abs(m / distance - 1) < 5e-3 for m in measured)
+                what = f"{expect}, distances {measured[0]:.4g}, {measured[1]:.4g} (expected {distance:.4g})"
+            checks.check(ok, f"--against at 1 %: {what}: {text}")
+    finally:
+        check.mote, check.Disc = real_mote, real_disc
+
+
 checks = Checks()
 steady_rows(checks)
 trap_rows(checks)
@@ -227,4 +277,5 @@ fragmentation_rows(checks)
 drift_rows(checks)
 settling_rows(checks)
 temperature_rows(checks)
+against_rows(checks)
 sys.exit(checks.finish())
