@@ -1,12 +1,14 @@
 // The generic time loop (see include/mote/io/run_loop.hpp).
 #include "mote/io/run_loop.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -209,6 +211,23 @@ double RunLoop::output_time(long long k) const {
   return std::min(settings_.t_end, static_cast<double>(k) * settings_.snapshot_dt);
 }
 
+/// The first output index k >= 1 whose time is after t, or that of the final snapshot at t_end,
+/// by bisection (output_time is non-decreasing in k): a restart may make the cadence much finer.
+long long RunLoop::first_output_after(double t) const {
+  const auto due = [&](long long k) { return output_time(k) > t || output_time(k) >= settings_.t_end; };
+  long long hi = 1;
+  while (!due(hi) && hi < std::numeric_limits<long long>::max() / 2) hi *= 2;
+  long long lo = hi / 2;  // not due, unless hi is 1
+  while (hi - lo > 1) {
+    const long long mid = lo + (hi - lo) / 2;
+    if (due(mid))
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return hi;
+}
+
 double RunLoop::next_snapshot_time(const State& s) const { return output_time(s.next_output); }
 
 void RunLoop::write_run_attributes(H5File& file, const State& s) const {
@@ -390,11 +409,11 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
   s.next_output = file.read_attribute_int("/", "next_output");
-  // A restart may change the snapshot cadence or t_end. Back to the first output time after s.time
-  // (a run that ended at t_end has used one index for that final snapshot, which a longer list or
-  // a later t_end would otherwise skip), then past the times it has already passed.
-  while (s.next_output > 1 && output_time(s.next_output - 1) > s.time) s.next_output -= 1;
-  while (next_snapshot_time(s) <= s.time && next_snapshot_time(s) < settings_.t_end) s.next_output += 1;
+  // A restart may change the snapshot cadence or t_end: the first output time after s.time (a run
+  // that ended at t_end has used one index for that final snapshot, which a longer list or a later
+  // t_end would otherwise skip). A run restarted at or past t_end keeps its own index.
+  const long long first = first_output_after(s.time);
+  s.next_output = s.time < settings_.t_end ? first : std::max(s.next_output, first);
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);

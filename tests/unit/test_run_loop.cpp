@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,6 +21,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace mote;
+
+/// A real as a deck override that reads back to the same double.
+std::string format_real(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
 
 class Decay final : public io::Simulation {
  public:
@@ -163,6 +171,24 @@ TEST_F(RunLoopTest, ContinuingAFinishedRunKeepsTheSnapshotCadence) {
   ASSERT_EQ(run(resumed, {"run.t_end=1.3"}, *checkpoint), core::kExitFinished);
   const double expected[] = {0.0, 0.25, 0.5, 0.75, 0.9, 1.0, 1.25, 1.3};
   for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
+}
+
+TEST_F(RunLoopTest, ARestartWithAMuchFinerCadenceFindsItsNextOutputAtOnce) {
+  // 2^-40 after t = 1: the next output index is 2^40 + 1. Stepping the index forward one at a time
+  // (as before 2026-12-06) took about 10^12 iterations; the bisection finds it at once.
+  Decay first;
+  ASSERT_EQ(run(first, {"run.t_end=1.0"}), core::kExitFinished);
+  Decay resumed;
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  const double cadence = std::ldexp(1.0, -40);
+  ASSERT_EQ(
+      run(resumed, {"run.t_end=" + format_real(1.0 + 3.0 * cadence), "output.snapshot_dt=" + format_real(cadence)},
+          *checkpoint),
+      core::kExitFinished);
+  const double expected[] = {0.0, 0.25, 0.5, 0.75, 1.0, 1.0 + cadence, 1.0 + 2.0 * cadence, 1.0 + 3.0 * cadence};
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 8, "h5")));
 }
 
 TEST_F(RunLoopTest, BadSnapshotTimesAreRefused) {

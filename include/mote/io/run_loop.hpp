@@ -81,6 +81,8 @@ class RunLoop {
   int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
   /// The k-th scheduled output time (k >= 1; the final snapshot at t_end past the schedule).
   double output_time(long long k) const;
+  /// The first k >= 1 with output_time(k) > t, or the final snapshot's index where t >= t_end.
+  long long first_output_after(double t) const;
   double next_snapshot_time(const State& s) const;
   void write_snapshot(Simulation& sim, State& s);
   void write_hdf5_snapshot(Simulation& sim, const State& s);
