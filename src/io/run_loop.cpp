@@ -217,6 +217,10 @@ long long RunLoop::first_output_after(double t) const {
   const auto due = [&](long long k) { return output_time(k) > t || output_time(k) >= settings_.t_end; };
   long long hi = 1;
   while (!due(hi) && hi < std::numeric_limits<long long>::max() / 2) hi *= 2;
+  if (!due(hi))
+    throw core::InputError("output.snapshot_dt = " + logging::format("%.6g", settings_.snapshot_dt) +
+                           " is too fine for t = " + logging::format("%.6g", t) +
+                           ": the next output index would exceed 2^62");
   long long lo = hi / 2;  // not due, unless hi is 1
   while (hi - lo > 1) {
     const long long mid = lo + (hi - lo) / 2;

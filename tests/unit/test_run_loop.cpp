@@ -189,6 +189,17 @@ TEST_F(RunLoopTest, ARestartWithAMuchFinerCadenceFindsItsNextOutputAtOnce) {
   const double expected[] = {0.0, 0.25, 0.5, 0.75, 1.0, 1.0 + cadence, 1.0 + 2.0 * cadence, 1.0 + 3.0 * cadence};
   for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
   EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 8, "h5")));
+
+  Decay refused;  // an index beyond 2^62 is refused before any step
+  const auto last = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(last);
+  try {
+    run(refused, {"run.t_end=2.0", "output.snapshot_dt=1e-300"}, *last);
+    ADD_FAILURE() << "a cadence of 1e-300 at t > 1 was accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("too fine"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(refused.steps, 0);
 }
 
 TEST_F(RunLoopTest, BadSnapshotTimesAreRefused) {
