@@ -92,6 +92,22 @@ class RunLoopTest : public ::testing::Test {
     return f.read_attribute_real("/", "time");
   }
 
+  /// Runs a Decay to its end with `overrides`; its last checkpoint, to continue from.
+  std::string finished_run_checkpoint(const std::vector<std::string>& overrides) {
+    Decay first;
+    EXPECT_EQ(run(first, overrides), core::kExitFinished);
+    const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+    EXPECT_TRUE(checkpoint);
+    return checkpoint ? std::string(*checkpoint) : std::string();
+  }
+
+  /// The snapshots are exactly at `expected`, and there is none after them.
+  void expect_snapshot_times(const std::vector<double>& expected) const {
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      EXPECT_EQ(snapshot_time(static_cast<int>(i)), expected[i]) << "snapshot " << i;
+    EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", static_cast<long long>(expected.size()), "h5")));
+  }
+
   core::DeckSchema schema_;
   std::string dir_;
 };
@@ -148,47 +164,33 @@ TEST_F(RunLoopTest, RestartWithAChangedCadenceSkipsPassedTimes) {
 TEST_F(RunLoopTest, ContinuingAFinishedRunWritesEveryNewListedTime) {
   // The final snapshot at t_end takes an output index; a continuation to a later t_end with a
   // longer list must still write the first new time (it skipped it once, 2026-12-06).
-  Decay first;
-  ASSERT_EQ(run(first, {"output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4]"}), core::kExitFinished);
+  const auto checkpoint = finished_run_checkpoint({"output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4]"});
   Decay resumed;
-  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
-  ASSERT_TRUE(checkpoint);
-  ASSERT_EQ(run(resumed, {"run.t_end=2.0", "output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4, 1.5, 1.8]"},
-                *checkpoint),
-            core::kExitFinished);
-  const double expected[] = {0.0, 0.1, 0.4, 1.0, 1.5, 1.8, 2.0};
-  for (int i = 0; i < 7; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
-  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 7, "h5")));
+  ASSERT_EQ(
+      run(resumed, {"run.t_end=2.0", "output.snapshot_dt=0", "output.snapshot_times=[0.1, 0.4, 1.5, 1.8]"}, checkpoint),
+      core::kExitFinished);
+  expect_snapshot_times({0.0, 0.1, 0.4, 1.0, 1.5, 1.8, 2.0});
 }
 
 TEST_F(RunLoopTest, ContinuingAFinishedRunKeepsTheSnapshotCadence) {
   // The same with output.snapshot_dt: t_end = 0.9 is not on the cadence of 0.25.
-  Decay first;
-  ASSERT_EQ(run(first, {"run.t_end=0.9"}), core::kExitFinished);
+  const auto checkpoint = finished_run_checkpoint({"run.t_end=0.9"});
   Decay resumed;
-  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
-  ASSERT_TRUE(checkpoint);
-  ASSERT_EQ(run(resumed, {"run.t_end=1.3"}, *checkpoint), core::kExitFinished);
-  const double expected[] = {0.0, 0.25, 0.5, 0.75, 0.9, 1.0, 1.25, 1.3};
-  for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
+  ASSERT_EQ(run(resumed, {"run.t_end=1.3"}, checkpoint), core::kExitFinished);
+  expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 0.9, 1.0, 1.25, 1.3});
 }
 
 TEST_F(RunLoopTest, ARestartWithAMuchFinerCadenceFindsItsNextOutputAtOnce) {
   // 2^-40 after t = 1: the next output index is 2^40 + 1. Stepping the index forward one at a time
   // (as before 2026-12-06) took about 10^12 iterations; the bisection finds it at once.
-  Decay first;
-  ASSERT_EQ(run(first, {"run.t_end=1.0"}), core::kExitFinished);
+  const auto checkpoint = finished_run_checkpoint({"run.t_end=1.0"});
   Decay resumed;
-  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
-  ASSERT_TRUE(checkpoint);
   const double cadence = std::ldexp(1.0, -40);
   ASSERT_EQ(
       run(resumed, {"run.t_end=" + format_real(1.0 + 3.0 * cadence), "output.snapshot_dt=" + format_real(cadence)},
-          *checkpoint),
+          checkpoint),
       core::kExitFinished);
-  const double expected[] = {0.0, 0.25, 0.5, 0.75, 1.0, 1.0 + cadence, 1.0 + 2.0 * cadence, 1.0 + 3.0 * cadence};
-  for (int i = 0; i < 8; ++i) EXPECT_EQ(snapshot_time(i), expected[i]) << "snapshot " << i;
-  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "snapshot", 8, "h5")));
+  expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 1.0, 1.0 + cadence, 1.0 + 2.0 * cadence, 1.0 + 3.0 * cadence});
 
   Decay refused;  // an index beyond 2^62 is refused before any step
   const auto last = io::latest_numbered(dir_, "checkpoint", "h5");
