@@ -3,7 +3,7 @@
 
     check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
              [--frag-factor 2] [--drift-slope-tol 0.2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
-             [--iso-T-ref 159.1] [--cool-from 6] [--against OTHER_RUN [--against-tol 0.05]]
+             [--iso-T-ref 159.1] [--cool-from 6] [--against OTHER_RUN [--against-tol 0.05] [--against-T-tol 0.005]]
 
 Everything is computed here from the snapshots and the history, independently
 of the C++ code. Grid: cell centres R_i, Z_ij = R_i tan theta_j, column widths
@@ -64,7 +64,11 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
 --against OTHER_RUN compares the last snapshot with OTHER_RUN's snapshot at the
 same time (another deck or rule on the same grid): the mass-weighted L1
 distances sum |d sigma_d(m, R)| R dR / sum sigma_d R dR and
-sum |d rho_s| dV / sum rho_s dV over every cell and species, both <= --against-tol.
+sum |d rho_s| dV / sum rho_s dV over every cell and species, both <= --against-tol;
+of two non-isothermal runs also the temperature: the gas-mass-weighted L1
+sum |T / T_o - 1| rho_g dV / sum rho_g dV and the largest |T / T_o - 1| in the
+mid-plane from the cell nearest --cool-from outward, both <= --against-T-tol
+(0.005); the largest anywhere (where starlight is absorbed) is reported.
 
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
@@ -349,10 +353,10 @@ def distances(d, o):
     return sigma, np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
 
 
-def check_against(v, d, other_dir, tol):
+def check_against(v, d, other_dir, tol, T_tol, radius):
     """The last snapshot against the other run's snapshot at the same time, on the same
     grid: the mass-weighted L1 distances of sigma_d(m, R) (weight: the annulus area
-    R dR) and of the dust mass of every cell and species (R dR dZ)."""
+    R dR) and of the dust mass of every cell and species (R dR dZ); of non-isothermal runs also T."""
     match = [q for q in mote.list_snapshots(other_dir) if abs(Disc(mote.read_snapshot(q)).time_yr - d.time_yr)
              <= 1e-9 * d.time_yr]
     if not match:
@@ -370,6 +374,25 @@ def check_against(v, d, other_dir, tol):
     v.check(max(sigma, cells) <= tol,
             f"against {other_dir} at {d.time_yr:.4g} yr: sigma_d(m, R) differs by {sigma:.3g}, the dust of each cell "
             f"and species by {cells:.3g} (mass-weighted L1) <= {tol:g}")
+    if d.radiation and o.radiation:
+        check_against_temperature(v, d, o, T_tol, radius)
+
+
+def check_against_temperature(v, d, o, tol, radius):
+    """Non-isothermal runs: T of disc d against disc o, the gas-mass-weighted L1 of |T / T_o - 1| (weight
+    rho_g R dR dZ) and its largest value in the mid-plane from the cell nearest `radius` (au) outward, both
+    <= tol; the largest anywhere is reported (the layer where starlight is absorbed)."""
+    rel = np.abs(d.T_gas / o.T_gas - 1.0)
+    weight = o.rho_g * (d.R * np.diff(d.R_nodes[:, 0]))[:, None] * d.dZ
+    mean = np.sum(rel * weight) / np.sum(weight)
+    j = d.column(radius)
+    mid = rel[j:, 0].max()
+    v.check(max(mean, mid) <= tol,
+            f"against: temperature differs by {mean:.3g} (gas-mass-weighted L1) and in the mid-plane from "
+            f"{d.R[j] / AU:.2f} au outward by at most {mid:.3g} <= {tol:g}")
+    i, k = np.unravel_index(np.argmax(rel), rel.shape)
+    v.info(f"against: the largest temperature difference, {rel[i, k]:.3g}, is at R = {d.R[i] / AU:.2f} au, "
+           f"Z = {d.Z[i, k] / d.h_g[i]:.2f} h_g")
 
 
 def plot(d, out, radius):
@@ -482,6 +505,8 @@ def main():
     p.add_argument("--against", metavar="RUN_DIR",
                    help="compare the last snapshot with this run's at the same time (another deck of the same grid)")
     p.add_argument("--against-tol", type=float, default=0.05)
+    p.add_argument("--against-T-tol", type=float, default=0.005,
+                   help="non-isothermal runs: T's gas-mass-weighted L1 and mid-plane distances from --cool-from out")
     args = p.parse_args()
     paths = mote.list_snapshots(args.run_dir)
     if not paths:
@@ -504,7 +529,7 @@ def main():
         report_sweeping(v, d)
     check_mass(v, args.run_dir, args.mass_tol)
     if args.against:
-        check_against(v, d, args.against, args.against_tol)
+        check_against(v, d, args.against, args.against_tol, args.against_T_tol, args.cool_from)
     if d.radiation:
         check_temperature(v, d, args.iso_T_ref, args.cool_from)
     else:

@@ -31,7 +31,11 @@ Gaussian of a chosen scale height. Checks:
   * --against: a run on the same grid whose dust differs by 0.2 % passes at
     1 % with both distances 0.002/1.002 (to 0.5 %: the row prints 3 digits),
     by 5 % fails; a run whose theta nodes or grain sizes differ by 1e-9 is
-    refused as another grid, naming what differs;
+    refused as another grid, naming what differs; of two non-isothermal discs
+    T_o = 1.003 T passes --against-T-tol 0.5 % with both temperature distances
+    0.003/1.003, also with the top five cells 20 % hotter (reported as the
+    largest difference, 0.2/1.2), and T_o 1 % hotter in the mid-plane beyond
+    10 au or everywhere fails;
   * non-isothermal rows: a mid-plane at 0.9 x the isothermal T and a top cell at
     1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both, also with the wall inside
     6 au at 1.2 x; a mid-plane at 1.02 x beyond 15 au fails the cooler interior,
@@ -91,6 +95,7 @@ def gas_disc(v_frag):
     d.a = np.geomspace(1e-5, 20.0, 135)
     d.dlnm = 3.0 * np.log(d.a[1] / d.a[0])
     d.time_yr = 3e5
+    d.radiation = None
     return d
 
 
@@ -256,7 +261,7 @@ def against_rows(checks):
                                            "read_snapshot": staticmethod(lambda path: path)})
             check.Disc = lambda snap, o=o: o
             v = Rows()
-            check.check_against(v, base, "other_run", 0.01)
+            check.check_against(v, base, "other_run", 0.01, 0.005, 6.0)
             text = v.rows[-1][1]
             if distance is None:
                 ok = v.verdicts("against") == [expect] and "another grid" in text and " differ)" in text
@@ -270,6 +275,41 @@ def against_rows(checks):
         check.mote, check.Disc = real_mote, real_disc
 
 
+def against_temperature_rows(checks):
+    """Two non-isothermal discs with the same dust: T_o = T x factor(R, Z) against the T of base (the isothermal T,
+    the measure is relative): a uniform 0.3 % passes at 0.5 % with both distances 0.003 / 1.003; the top five
+    cells 20 % hotter (little gas: the absorption layer) pass and are reported as the largest; the mid-plane 1 %
+    hotter beyond 10 au, or 1 % everywhere, fail."""
+    base = with_nodes(disc(100.0, lambda d: d.a_frag()))
+    base.radiation = {"star_T_eff": 4500.0, "star_radius": 1.7}
+    base.T_gas = 159.1000339385544 * np.repeat(((base.R / AU) ** -0.5)[:, None], base.Z.shape[1], axis=1)
+    top = np.arange(base.Z.shape[1]) >= base.Z.shape[1] - 5
+    outer_mid = (base.R[:, None] > 10.0 * AU) & (np.arange(base.Z.shape[1]) == 0)[None, :]
+    cases = (("0.3 % everywhere", 1.003, "PASS"), ("0.3 %, the top cells 20 %", np.where(top, 1.2, 1.003), "PASS"),
+             ("the mid-plane 1 % beyond 10 au", np.where(outer_mid, 1.01, 1.0), "FAIL"),
+             ("1 % everywhere", 1.01, "FAIL"))
+    others = [with_nodes(disc(100.0, lambda d: d.a_frag())) for _ in cases]
+    real_mote, real_disc = check.mote, check.Disc
+    try:
+        for (what, factor, expect), o in zip(cases, others):
+            o.radiation, o.T_gas = base.radiation, base.T_gas * factor
+            check.mote = type("Stub", (), {"list_snapshots": staticmethod(lambda run: ["other"]),
+                                           "read_snapshot": staticmethod(lambda path: path)})
+            check.Disc = lambda snap, o=o: o
+            v = Rows()
+            check.check_against(v, base, "other_run", 0.01, 0.005, 6.0)
+            rows = [r[1] for r in v.rows if r[1].startswith("against: ")]
+            ok = v.verdicts("against: temperature") == [expect] and len(rows) == 2
+            if ok and what == "0.3 % everywhere":
+                measured = (number_after(rows[0], "differs by"), number_after(rows[0], "at most"))
+                ok = all(abs(m / (0.003 / 1.003) - 1) < 5e-3 for m in measured)
+            if ok and "top" in what:
+                ok = number_after(rows[1], "difference,") == float(f"{0.2 / 1.2:.3g}")
+            checks.check(ok, f"--against-T-tol 0.5 %, T_o {what}: {expect}: {' / '.join(rows)}")
+    finally:
+        check.mote, check.Disc = real_mote, real_disc
+
+
 checks = Checks()
 steady_rows(checks)
 trap_rows(checks)
@@ -278,4 +318,5 @@ drift_rows(checks)
 settling_rows(checks)
 temperature_rows(checks)
 against_rows(checks)
+against_temperature_rows(checks)
 sys.exit(checks.finish())
