@@ -412,12 +412,10 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   s.time = file.read_attribute_real("/", "time");
   s.step = file.read_attribute_int("/", "step");
   s.dt = file.read_attribute_real("/", "dt");
-  s.next_output = file.read_attribute_int("/", "next_output");
   // A restart may change the snapshot cadence or t_end: the first output time after s.time (a run
   // that ended at t_end has used one index for that final snapshot, which a longer list or a later
-  // t_end would otherwise skip). A run restarted at or past t_end keeps its own index.
-  const long long first = first_output_after(s.time);
-  s.next_output = s.time < settings_.t_end ? first : std::max(s.next_output, first);
+  // t_end would otherwise skip). A restart at or past t_end does not step (run()).
+  s.next_output = first_output_after(s.time);
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);
@@ -473,6 +471,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   if (settings_.phantom_dumps) phantom_source(sim).check_phantom_dump();  // before output.dir is touched
   const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
   run_id_ = directory.run_id();
+  if (restart && no_steps_left(s)) return report_nothing_left(s);
   const long long start_step = s.step;
   try {
     return run_steps(sim, s, restart.has_value(), wall_start);
@@ -480,6 +479,20 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
     if (s.step > start_step) checkpoint_after_write_error(sim, s);
     throw;
   }
+}
+
+bool RunLoop::no_steps_left(const State& s) const {
+  return s.time >= settings_.t_end || (settings_.max_steps > 0 && s.step >= settings_.max_steps);
+}
+
+int RunLoop::report_nothing_left(const State& s) const {
+  const bool finished = s.time >= settings_.t_end;
+  logging::info(logging::format("the checkpoint is at step %lld, t = %.10g, ", s.step, s.time),
+                finished ? logging::format("at or past run.t_end = %.10g", settings_.t_end)
+                         : logging::format("at or past run.max_steps = %lld", settings_.max_steps),
+                ": nothing to do, nothing written (raise ", finished ? "run.t_end" : "run.max_steps",
+                " to continue the run)");
+  return finished ? core::kExitFinished : core::kExitStepLimit;
 }
 
 int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_start) {

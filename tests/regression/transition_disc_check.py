@@ -33,10 +33,13 @@ exe, work, deck = sys.argv[1], sys.argv[2], sys.argv[3]
 shutil.rmtree(work, ignore_errors=True)
 full, split = os.path.join(work, "full"), os.path.join(work, "split")
 run([exe, deck, f"output.dir={full}"])
-p = run([exe, deck, f"output.dir={split}", "run.max_steps=500"])
+steps = mote.last_snapshot(full).step
+run([exe, deck, f"output.dir={split}", f"run.max_steps={steps // 2}"])
 p = run([exe, "--restart", "latest", deck, f"output.dir={split}"])
 checks = Checks()
-checks.check("restarted from" in p.stdout, "the second part restarted from a checkpoint")
+checks.check("restarted from" in p.stdout and f"{steps - steps // 2} steps" in p.stdout,
+             f"the second part restarted from the checkpoint at step {steps // 2} and made the other "
+             f"{steps - steps // 2} of {steps} steps")
 checks.check("driver: coagulation" in p.stdout, "the log lists the coagulation's calls and wall time")
 
 au, M_sun, R_sun = 1.495978707e13, 1.98840987e33, 6.957e10

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 #include "mote/core/deck.hpp"
@@ -178,6 +180,38 @@ TEST_F(RunLoopTest, ContinuingAFinishedRunKeepsTheSnapshotCadence) {
   Decay resumed;
   ASSERT_EQ(run(resumed, {"run.t_end=1.3"}, checkpoint), core::kExitFinished);
   expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 0.9, 1.0, 1.25, 1.3});
+}
+
+TEST_F(RunLoopTest, RestartingAFinishedRunWritesNothing) {
+  // `--restart latest` on a run that has reached run.t_end (a job script that always restarts) once
+  // wrote a second final snapshot at the same time and a checkpoint, dropping the oldest one.
+  const auto checkpoint = finished_run_checkpoint({"output.checkpoint_every=10", "output.checkpoints_kept=2"});
+  const auto listing = [this] {
+    std::map<std::string, fs::file_time_type> files;
+    for (const auto& e : fs::directory_iterator(dir_)) files[e.path().filename().string()] = e.last_write_time();
+    return files;
+  };
+  const auto before = listing();
+  for (const std::string t_end : {"1.0", "0.6"}) {
+    Decay again;
+    EXPECT_EQ(run(again, {"run.t_end=" + t_end, "output.checkpoint_every=10", "output.checkpoints_kept=2"}, checkpoint),
+              core::kExitFinished);
+    EXPECT_EQ(listing(), before) << "run.t_end = " << t_end;
+  }
+  expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 1.0});
+}
+
+TEST_F(RunLoopTest, RestartingAtRunMaxStepsWritesNothing) {
+  Decay first;
+  ASSERT_EQ(run(first, {"run.max_steps=10"}), core::kExitStepLimit);
+  const auto checkpoint = io::latest_numbered(dir_, "checkpoint", "h5");
+  ASSERT_TRUE(checkpoint);
+  const auto files = std::distance(fs::directory_iterator(dir_), fs::directory_iterator());
+  Decay again;
+  EXPECT_EQ(run(again, {"run.max_steps=10"}, *checkpoint), core::kExitStepLimit);
+  EXPECT_EQ(again.steps, first.steps);  // restored, not advanced
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), files);
+  EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "checkpoint", 2, "h5")));
 }
 
 TEST_F(RunLoopTest, ARestartWithAMuchFinerCadenceFindsItsNextOutputAtOnce) {

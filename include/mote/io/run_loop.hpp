@@ -65,7 +65,8 @@ class RunLoop {
   /// Runs to run.t_end (or max_steps, a signal, a non-finite value or dt < run.dt_min); returns a core::ExitCode.
   /// With `restart`, the state and loop counters are first read from that checkpoint, which
   /// must belong to the run of output.dir (core::InputError otherwise, before anything is written).
-  /// output.dir is locked from before the first write until run() returns or throws.
+  /// output.dir is locked from before the first write until run() returns or throws. A restart at or
+  /// past run.t_end or run.max_steps writes nothing (no duplicate final snapshot, no checkpoint).
   int run(Simulation& sim, const std::optional<std::string>& restart);
 
  private:
@@ -77,6 +78,10 @@ class RunLoop {
     long long snapshot_count = 0;  // number of snapshot files written (file numbering)
     long long next_checkpoint = 1;
   };
+  /// A restored state at or past run.t_end or run.max_steps: a restart has nothing to do.
+  bool no_steps_left(const State& s) const;
+  /// Says so and returns the exit code of a run that ended there; nothing is written.
+  int report_nothing_left(const State& s) const;
   /// The time loop after the directory is claimed: history, snapshots, checkpoints.
   int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
   /// The k-th scheduled output time (k >= 1; the final snapshot at t_end past the schedule).
