@@ -12,10 +12,13 @@
 A restart from each checkpoint on 2 ranks finishes. Ends with 'N passed, M failed'.
 """
 import os
+import re
 import shutil
 import signal
 import subprocess
 import sys
+
+import h5py
 
 from harness import MPI_ENV, Checks, run
 
@@ -66,10 +69,14 @@ def checkpoint_restarts(name, d):
     ckpts = sorted(f for f in os.listdir(d) if f.startswith("checkpoint_") and f.endswith(".h5"))
     checks.check(len(ckpts) == 1 and not any(f.endswith(".tmp") for f in os.listdir(d)),
                  f"{name}: one checkpoint, no temporary ({ckpts})")
-    p = run([*launcher, exe, "--restart", "latest", deck, "grid.nx=32", "grid.ny=32", "run.t_end=0.05",
+    with h5py.File(os.path.join(d, ckpts[-1]), "r") as f:
+        t_end = float(f.attrs["time"]) + 0.02  # a few steps past the checkpoint (dt about 0.0045)
+    p = run([*launcher, exe, "--restart", "latest", deck, "grid.nx=32", "grid.ny=32", f"run.t_end={t_end!r}",
              f"output.dir={d}"], expect=None)
-    checks.check(p.returncode == 0 and "restarted from" in p.stdout, f"{name}: the restart on 2 ranks finishes "
-                 f"(exit {p.returncode})")
+    steps = re.search(r"finished: (\d+) steps", p.stdout)
+    checks.check(p.returncode == 0 and "restarted from" in p.stdout and steps and int(steps.group(1)) > 0,
+                 f"{name}: the restart on 2 ranks steps on and finishes (exit {p.returncode}, "
+                 f"{steps.group(1) if steps else 'no'} steps)")
 
 
 def main():

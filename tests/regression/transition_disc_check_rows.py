@@ -34,8 +34,10 @@ Gaussian of a chosen scale height. Checks:
     refused as another grid, naming what differs; of two non-isothermal discs
     T_o = 1.003 T passes --against-T-tol 0.5 % with both temperature distances
     0.003/1.003, also with the top five cells 20 % hotter (reported as the
-    largest difference, 0.2/1.2), and T_o 1 % hotter in the mid-plane beyond
-    10 au or everywhere fails;
+    largest difference, 0.2/1.2) and with the mid-plane 1 % hotter inside 5 au
+    (before --cool-from); T_o 1 % hotter in the mid-plane beyond 10 au fails on
+    the mid-plane distance, 1 % hotter off the mid-plane on the gas-mass-weighted
+    one, 1 % everywhere on both;
   * non-isothermal rows: a mid-plane at 0.9 x the isothermal T and a top cell at
     1.2 x the blackbody T_* (R_* / 2R)^1/2 pass both, also with the wall inside
     6 au at 1.2 x; a mid-plane at 1.02 x beyond 15 au fails the cooler interior,
@@ -279,15 +281,17 @@ def against_temperature_rows(checks):
     """Two non-isothermal discs with the same dust: T_o = T x factor(R, Z) against the T of base (the isothermal T,
     the measure is relative): a uniform 0.3 % passes at 0.5 % with both distances 0.003 / 1.003; the top five
     cells 20 % hotter (little gas: the absorption layer) pass and are reported as the largest; the mid-plane 1 %
-    hotter beyond 10 au, or 1 % everywhere, fail."""
+    hotter inside 5 au (before --cool-from) passes; the mid-plane 1 % hotter beyond 10 au fails on the mid-plane
+    row, every cell but the mid-plane's 1 % hotter on the mass-weighted mean, and 1 % everywhere on both."""
     base = with_nodes(disc(100.0, lambda d: d.a_frag()))
     base.radiation = {"star_T_eff": 4500.0, "star_radius": 1.7}
     base.T_gas = 159.1000339385544 * np.repeat(((base.R / AU) ** -0.5)[:, None], base.Z.shape[1], axis=1)
     top = np.arange(base.Z.shape[1]) >= base.Z.shape[1] - 5
-    outer_mid = (base.R[:, None] > 10.0 * AU) & (np.arange(base.Z.shape[1]) == 0)[None, :]
+    mid = (np.arange(base.Z.shape[1]) == 0)[None, :]
     cases = (("0.3 % everywhere", 1.003, "PASS"), ("0.3 %, the top cells 20 %", np.where(top, 1.2, 1.003), "PASS"),
-             ("the mid-plane 1 % beyond 10 au", np.where(outer_mid, 1.01, 1.0), "FAIL"),
-             ("1 % everywhere", 1.01, "FAIL"))
+             ("the mid-plane 1 % inside 5 au", np.where(mid & (base.R[:, None] < 5.0 * AU), 1.01, 1.0), "PASS"),
+             ("the mid-plane 1 % beyond 10 au", np.where(mid & (base.R[:, None] > 10.0 * AU), 1.01, 1.0), "FAIL"),
+             ("1 % off the mid-plane", np.where(mid, 1.0, 1.01), "FAIL"), ("1 % everywhere", 1.01, "FAIL"))
     others = [with_nodes(disc(100.0, lambda d: d.a_frag())) for _ in cases]
     real_mote, real_disc = check.mote, check.Disc
     try:
@@ -305,6 +309,10 @@ def against_temperature_rows(checks):
                 ok = all(abs(m / (0.003 / 1.003) - 1) < 5e-3 for m in measured)
             if ok and "top" in what:
                 ok = number_after(rows[1], "difference,") == float(f"{0.2 / 1.2:.3g}")
+            if ok and "mid-plane" in what:  # which distance decides
+                ok = number_after(rows[0], "at most") == (float(f"{0.01 / 1.01:.3g}") if "beyond" in what else 0.0)
+            if ok and "off the mid-plane" in what:
+                ok = number_after(rows[0], "at most") == 0.0 and number_after(rows[0], "differs by") > 0.005
             checks.check(ok, f"--against-T-tol 0.5 %, T_o {what}: {expect}: {' / '.join(rows)}")
     finally:
         check.mote, check.Disc = real_mote, real_disc

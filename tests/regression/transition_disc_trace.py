@@ -56,7 +56,7 @@ checks.check("PASS mass:" in p.stdout, "check.py: the trace run's mass budget cl
 
 z = mote.last_snapshot(split)
 diff = [n for n in y.fields if y.fields[n].tobytes() != z.fields[n].tobytes()]
-checks.check("restarted from" in restarted.stdout and y.step > stop,
+checks.check("restarted from" in restarted.stdout and f"finished: {y.step - stop} steps" in restarted.stdout,
              f"the split run stopped at step {stop} of {y.step} and restarted from its checkpoint")
 checks.check(y.step == z.step and not diff, f"restart: step {z.step} ({y.step}), all {len(y.fields)} snapshot fields "
                                             "bit-identical" + (f" (differ: {diff[:5]})" if diff else ""))

@@ -14,6 +14,8 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "mote/core/deck.hpp"
 #include "mote/io/output_files.hpp"
@@ -192,10 +194,13 @@ TEST_F(RunLoopTest, RestartingAFinishedRunWritesNothing) {
     return files;
   };
   const auto before = listing();
-  for (const std::string t_end : {"1.0", "0.6"}) {
+  for (const auto& [t_end, printed] : {std::pair<std::string, std::string>{"1.0", "1"}, {"0.6", "0.6"}}) {
     Decay again;
+    ::testing::internal::CaptureStdout();
     EXPECT_EQ(run(again, {"run.t_end=" + t_end, "output.checkpoint_every=10", "output.checkpoints_kept=2"}, checkpoint),
               core::kExitFinished);
+    EXPECT_NE(::testing::internal::GetCapturedStdout().find("past run.t_end = " + printed + ": nothing to do"),
+              std::string::npos);
     EXPECT_EQ(listing(), before) << "run.t_end = " << t_end;
   }
   expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 1.0});
@@ -208,7 +213,9 @@ TEST_F(RunLoopTest, RestartingAtRunMaxStepsWritesNothing) {
   ASSERT_TRUE(checkpoint);
   const auto files = std::distance(fs::directory_iterator(dir_), fs::directory_iterator());
   Decay again;
+  ::testing::internal::CaptureStdout();
   EXPECT_EQ(run(again, {"run.max_steps=10"}, *checkpoint), core::kExitStepLimit);
+  EXPECT_NE(::testing::internal::GetCapturedStdout().find("past run.max_steps = 10: nothing to do"), std::string::npos);
   EXPECT_EQ(again.steps, first.steps);  // restored, not advanced
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), files);
   EXPECT_FALSE(fs::exists(io::numbered_path(dir_, "checkpoint", 2, "h5")));

@@ -66,7 +66,8 @@ class RunLoop {
   /// With `restart`, the state and loop counters are first read from that checkpoint, which
   /// must belong to the run of output.dir (core::InputError otherwise, before anything is written).
   /// output.dir is locked from before the first write until run() returns or throws. A restart at or
-  /// past run.t_end or run.max_steps writes nothing (no duplicate final snapshot, no checkpoint).
+  /// past run.t_end or run.max_steps writes nothing (no duplicate final snapshot, no checkpoint) but
+  /// what claiming a new output.dir writes (the directory and its run_id).
   int run(Simulation& sim, const std::optional<std::string>& restart);
 
  private:
