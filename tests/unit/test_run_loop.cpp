@@ -194,7 +194,8 @@ TEST_F(RunLoopTest, RestartingAFinishedRunWritesNothing) {
     return files;
   };
   const auto before = listing();
-  for (const auto& [t_end, printed] : {std::pair<std::string, std::string>{"1.0", "1"}, {"0.6", "0.6"}}) {
+  const std::pair<std::string, std::string> ends[] = {{"1.0", "1"}, {"0.6", "0.6"}};  // deck value, as logged
+  for (const auto& [t_end, printed] : ends) {
     Decay again;
     ::testing::internal::CaptureStdout();
     EXPECT_EQ(run(again, {"run.t_end=" + t_end, "output.checkpoint_every=10", "output.checkpoints_kept=2"}, checkpoint),
