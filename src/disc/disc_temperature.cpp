@@ -25,7 +25,16 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
       .default_value(1e-3)
       .greater_than(0.0)
       .less_than(1.0)
-      .doc("Predicted largest fractional temperature change that makes the next update due (RBO24: 0.1 %).");
+      .doc(
+          "Predicted fractional temperature change (temperature.change_measure) that makes the next update due "
+          "(RBO24: 0.1 %).");
+  s.string("temperature.change_measure")
+      .default_value(std::string("largest"))
+      .one_of({"largest", "mean"})
+      .doc(
+          "The fractional change of T that the schedule predicts: the largest over the cells (every cell within "
+          "temperature.update_tolerance), or the mean over them (cuDisc's fracerr; fewer updates where a few "
+          "cells change fast, as the trap's under coagulation).");
   s.integer("temperature.steady_solves")
       .default_value(30LL)
       .min(1)
@@ -59,6 +68,7 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
 TemperatureSettings TemperatureSettings::from_deck(const core::Deck& d) {
   TemperatureSettings t;
   t.update_tolerance = d.real("temperature.update_tolerance");
+  t.change_measure = d.string("temperature.change_measure") == "mean" ? ChangeMeasure::Mean : ChangeMeasure::Largest;
   t.steady_solves = static_cast<int>(d.integer("temperature.steady_solves"));
   t.steady_forcing = d.real("temperature.steady_forcing");
   t.max_growth = d.real("temperature.max_growth");
@@ -230,7 +240,9 @@ void DiscTemperature::update(double elapsed) {
     throw core::NumericalError(
         logging::cat("temperature update ", updates_ + 1, " failed; T is kept as it was: ", e.what(), hint));
   }
-  change_ = radiation::largest_relative_change(grid_, state_.T, T_before_);
+  change_ = settings_.change_measure == ChangeMeasure::Mean
+                ? radiation::mean_relative_change(grid_, state_.T, T_before_)
+                : radiation::largest_relative_change(grid_, state_.T, T_before_);
   open_luminosity_ = fld_.open_boundary_luminosity(state_);
   const double cap = settings_.max_growth * elapsed;
   next_interval_ = change_ > 0.0 ? std::min(settings_.update_tolerance * elapsed / change_, cap) : cap;

@@ -494,6 +494,14 @@ double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const
   return grid.comm().max(worst);
 }
 
+double mean_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_reference) {
+  double sum = 0.0;
+  par_reduce(
+      "radiation::fld_mean_temperature_change", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j, double& s) { s += math::fabs(T(i, j) / T_reference(i, j) - 1.0); }, sum);
+  return grid.comm().sum(sum) / (static_cast<double>(grid.nr_global) * grid.nt);
+}
+
 RealView2 total_energy_density(const RealView3& E) {
   RealView2 sum("radiation::E_total", E.extent(0), E.extent(1));
   const int nb = static_cast<int>(E.extent(2));

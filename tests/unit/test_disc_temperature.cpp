@@ -20,6 +20,7 @@
 #include "mote/disc/disc_simulation.hpp"
 #include "mote/disc/gas_structure.hpp"
 #include "mote/io/h5_file.hpp"
+#include "mote/radiation/fld.hpp"
 
 namespace {
 
@@ -133,6 +134,39 @@ TEST(DiscTemperature, ThinDiscReachesTheD2LimitAndTheGasAndDustFollowIt) {
       ASSERT_EQ(rho(i, j), rho_e(i, j)) << i << ", " << j;
       ASSERT_NEAR(cs2(i, j) / (T(i, j) * T_to_cs2), 1.0, 1e-14) << i << ", " << j;
     }
+}
+
+TEST(DiscTemperature, ChangeMeasuresAreTheLargestAndTheMeanOverTheActiveCells) {
+  DiscRun run;
+  const auto& grid = run.sim.grid();
+  RealView2 reference("T_reference", grid.nr_total(), grid.nt_total()), T("T", grid.nr_total(), grid.nt_total());
+  auto ref_h = Kokkos::create_mirror_view(reference);
+  auto T_h = Kokkos::create_mirror_view(T);
+  const auto active = [&grid](int i, int j) {
+    return grid.i_begin() <= i && i < grid.i_end() && grid.j_begin() <= j && j < grid.j_end();
+  };
+  double sum = 0.0, largest = 0.0;
+  for (int i = 0; i < grid.nr_total(); ++i)
+    for (int j = 0; j < grid.nt_total(); ++j) {
+      ref_h(i, j) = 100.0 + i + 0.5 * j;
+      const double change = active(i, j) ? 1e-3 * ((3 * i + j) % 7) - 2e-3 : 0.5;  // ghosts do not count
+      T_h(i, j) = ref_h(i, j) * (1.0 + change);
+      if (!active(i, j)) continue;
+      sum += std::fabs(T_h(i, j) / ref_h(i, j) - 1.0);
+      largest = std::fmax(largest, std::fabs(T_h(i, j) / ref_h(i, j) - 1.0));
+    }
+  Kokkos::deep_copy(reference, ref_h);
+  Kokkos::deep_copy(T, T_h);
+  EXPECT_EQ(radiation::largest_relative_change(grid, T, reference), largest);
+  EXPECT_NEAR(radiation::mean_relative_change(grid, T, reference), sum / (grid.nr * grid.nt), 1e-16);
+  EXPECT_LT(sum / (grid.nr * grid.nt), 0.5 * largest);
+
+  // The schedule with the mean: never more updates than with the largest change over the same steps.
+  DiscRun by_largest, by_mean({"temperature.change_measure=mean"});
+  by_largest.steps(12);
+  by_mean.steps(12);
+  EXPECT_LE(by_mean.sim.temperature()->updates(), by_largest.sim.temperature()->updates());
+  EXPECT_GE(by_mean.sim.temperature()->next_interval(), by_largest.sim.temperature()->next_interval());
 }
 
 TEST(DiscTemperature, UpdatesFollowThePredictedChange) {
@@ -268,6 +302,7 @@ TEST(DiscTemperature, DeckErrors) {
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_forcing=1"}), core::DeckError);
   EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.steady_forcing=-0.1"}), core::DeckError);
   EXPECT_NO_THROW(core::Deck::parse(kDeck, "exact", schema(), {"temperature.steady_forcing=0"}));
+  EXPECT_THROW(core::Deck::parse(kDeck, "bad", schema(), {"temperature.change_measure=median"}), core::DeckError);
 }
 
 }  // namespace

@@ -19,9 +19,11 @@
 // times of eq. 14 and the diffusivity).
 //
 // Schedule (RBO24 sec. 6): the first call is on the first step; after a call
-// that changed T by the largest fractional amount delta over `elapsed`, the
-// next is due after update_tolerance * elapsed / delta (the time the same
-// rate takes to change T by update_tolerance), at most max_growth * elapsed.
+// that changed T by the fractional amount delta over `elapsed` (the largest
+// over the cells, or with temperature.change_measure = "mean" their mean, as
+// cuDisc's fracerr), the next is due after update_tolerance * elapsed / delta
+// (the time the same rate takes to change T by update_tolerance), at most
+// max_growth * elapsed.
 //
 // The steady state at the first call is mote's choice (RBO24 sec. 6 only
 // says the first update is on the first step). A failed solve leaves T, E
@@ -48,9 +50,14 @@
 namespace mote::disc {
 
 /// Deck table [temperature]: how the driver couples the temperature solver of [radiation].
+/// What "the fractional change of T" of the schedule is: its largest value over the cells, or its mean over
+/// them (cuDisc's fracerr; RBO24 sec. 6 does not say which).
+enum class ChangeMeasure { Largest, Mean };
+
 struct TemperatureSettings {
-  double update_tolerance = 1e-3;  // predicted largest fractional change of T per call (RBO24: 0.1 %)
-  int steady_solves = 30;          // most lagged solves of the first update's steady state
+  double update_tolerance = 1e-3;  // predicted fractional change of T per call (RBO24: 0.1 %)
+  ChangeMeasure change_measure = ChangeMeasure::Largest;
+  int steady_solves = 30;  // most lagged solves of the first update's steady state
   double steady_forcing = radiation::FldSolver::kSteadyForcing;  // inexact lagged solves (0: exact)
   double max_growth = 10.0;                                      // next interval <= max_growth x the last elapsed one
   double gamma = 1.4;                                            // adiabatic index of c_V

@@ -187,6 +187,8 @@ class FldSolver {
 
 /// max over the active cells of |T / T_reference - 1|.
 double largest_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_reference);
+/// The mean over the active cells (of every rank) of |T / T_reference - 1|: cuDisc's fracerr.
+double mean_relative_change(const mesh::Grid& grid, const RealView2& T, const RealView2& T_reference);
 /// sum_b E(i, j, b) in every cell (a new view).
 RealView2 total_energy_density(const RealView3& E);
 
