@@ -49,11 +49,11 @@
 
 namespace mote::disc {
 
-/// Deck table [temperature]: how the driver couples the temperature solver of [radiation].
 /// What "the fractional change of T" of the schedule is: its largest value over the cells, or its mean over
 /// them (cuDisc's fracerr; RBO24 sec. 6 does not say which).
 enum class ChangeMeasure { Largest, Mean };
 
+/// Deck table [temperature]: how the driver couples the temperature solver of [radiation].
 struct TemperatureSettings {
   double update_tolerance = 1e-3;  // predicted fractional change of T per call (RBO24: 0.1 %)
   ChangeMeasure change_measure = ChangeMeasure::Largest;
