@@ -82,9 +82,10 @@ def case(name, failing, exit_code, in_error, in_output, new_checkpoint):
     new = [f for f in files(d, "checkpoint_") if f not in ckpts]
     checks.check(len(new) == (1 if new_checkpoint else 0), f"{name}: new checkpoints {new}")
     last = files(d, "checkpoint_")[-1]
-    rc, text = mpirun(["--restart", "latest", *common, f"output.dir={d}", "run.max_steps=4"])
-    ok = rc == 0 and f"restarted from {os.path.join(d, last)}" in text
-    checks.check(ok, f"{name}: restarts on 2 ranks from {last}" + ("" if ok else f" (exit {rc})\n{text[-3000:]}"))
+    rc, text = mpirun(["--restart", "latest", *common, f"output.dir={d}", "run.max_steps=8"])
+    ok = rc == 0 and f"restarted from {os.path.join(d, last)}" in text and "stopped at run.max_steps" in text
+    checks.check(ok, f"{name}: restarts on 2 ranks from {last} and steps on to run.max_steps = 8" +
+                 ("" if ok else f" (exit {rc})\n{text[-3000:]}"))
 
 
 def main():
