@@ -3,7 +3,8 @@
 solver on its adaptive schedule; RBO24 sec. 6-7, the CI deck) on 2 MPI ranks
 (radial slabs, the FLD system solved as one distributed system) matches 1 rank
 to the solver's tolerance, and a 2-rank checkpoint restarts on 1 rank to the
-same state.
+same state; with temperature.change_measure = "mean" (the mean over the cells
+of both slabs) 2 ranks take the same schedule as 1.
 
 usage: transition_disc_temperature_mpi.py EXE WORKDIR MPIEXEC [ARGS ...]
 """
@@ -54,4 +55,19 @@ for label, other in (("2 ranks", b), ("2-rank checkpoint restarted on 1 rank", c
 ha, hb = mote.read_history(os.path.join(one, "history.txt")), mote.read_history(os.path.join(two, "history.txt"))
 ua, ub = ha["temperature_updates"][-1], hb["temperature_updates"][-1]
 checks.check(ua == ub and ua > 10, f"the same temperature schedule: {ua:.0f} and {ub:.0f} updates")
+
+# temperature.change_measure = "mean": the mean over the cells of both slabs, the same schedule on 2 ranks.
+mean_one, mean_two = os.path.join(work, "mean_one"), os.path.join(work, "mean_two")
+run([exe, deck, *common, "temperature.change_measure=mean", f"output.dir={mean_one}"])
+run(launcher + [exe, deck, *common, "temperature.change_measure=mean", f"output.dir={mean_two}"])
+hm1 = mote.read_history(os.path.join(mean_one, "history.txt"))
+hm2 = mote.read_history(os.path.join(mean_two, "history.txt"))
+u1, u2 = hm1["temperature_updates"][-1], hm2["temperature_updates"][-1]
+changes = np.max(np.abs(hm2["temperature_change"] - hm1["temperature_change"]) /
+                 np.maximum(hm1["temperature_change"], 1e-300))
+checks.check(u1 == u2 and 1 < u1 < ua and changes <= 1e-4,  # T within 1e-7, changes of about 1e-3
+             f"change_measure = mean on 2 ranks: {u1:.0f} and {u2:.0f} updates (largest: {ua:.0f}), the history's "
+             f"mean changes within {changes:.2e} of 1 rank (<= 1e-4; a count of one slab's cells: 0.5)")
+dT = temperature_difference(mote.last_snapshot(mean_one), mote.last_snapshot(mean_two))
+checks.check(dT <= 100 * TOLERANCE, f"change_measure = mean: 2 ranks' T within {dT:.2e} of 1 rank (<= {100 * TOLERANCE:.0e})")
 sys.exit(checks.finish())

@@ -20,8 +20,8 @@
 //
 // Schedule (RBO24 sec. 6): the first call is on the first step; after a call
 // that changed T by the fractional amount delta over `elapsed` (the largest
-// over the cells, or with temperature.change_measure = "mean" their mean, as
-// cuDisc's fracerr), the next is due after update_tolerance * elapsed / delta
+// over the active cells, or with temperature.change_measure = "mean" their
+// mean, as cuDisc's fracerr without its ghost cells), the next is due after update_tolerance * elapsed / delta
 // (the time the same rate takes to change T by update_tolerance), at most
 // max_growth * elapsed.
 //
@@ -86,8 +86,8 @@ class DiscTemperature {
   /// T, E_R^b and the schedule under `group`; load hands T to the gas (before its structure is rebuilt).
   void save_state(io::H5File& file, const std::string& group = "/state/temperature") const;
   void load_state(const io::H5File& file, const std::string& group = "/state/temperature");
-  /// temperature_updates, temperature_change, fld_iterations, fld_solve_s,
-  /// absorbed_star and open_luminosity (power per radian of azimuth, at the last call).
+  /// temperature_updates, temperature_change (the last call's, by temperature.change_measure), fld_iterations,
+  /// fld_solve_s, absorbed_star and open_luminosity (power per radian of azimuth, at the last call).
   std::vector<io::Diagnostic> diagnostics() const;
   /// One log line on this process's updates: their count, BiCGStab iterations
   /// per update (least, most), the largest final residual against the
