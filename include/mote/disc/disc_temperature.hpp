@@ -21,9 +21,9 @@
 // Schedule (RBO24 sec. 6): the first call is on the first step; after a call
 // that changed T by the fractional amount delta over `elapsed` (the largest
 // over the active cells, or with temperature.change_measure = "mean" their
-// mean, as cuDisc's fracerr without its ghost cells), the next is due after update_tolerance * elapsed / delta
-// (the time the same rate takes to change T by update_tolerance), at most
-// max_growth * elapsed.
+// mean, as cuDisc's fracerr without its ghost cells), the next is due after
+// update_tolerance * elapsed / delta (the time the same rate takes to change T
+// by update_tolerance), at most max_growth * elapsed.
 //
 // The steady state at the first call is mote's choice (RBO24 sec. 6 only
 // says the first update is on the first step). A failed solve leaves T, E
