@@ -40,9 +40,9 @@ bool uses_fragmentation(const Kernel& kernel) {
 }  // namespace detail
 
 AnyKernel make_kernel(const CoagulationSettings& s, const MassGrid& grid, const GasCells& gas) {
-  if (s.kernel == "constant") return ConstantKernel{s.kernel_coefficient};
-  if (s.kernel == "additive") return AdditiveKernel{s.kernel_coefficient, grid.mass_view()};
-  if (s.kernel == "product") return ProductKernel{s.kernel_coefficient, grid.mass_view()};
+  if (s.kernel == "constant") return ConstantKernel{{}, s.kernel_coefficient};
+  if (s.kernel == "additive") return AdditiveKernel{{}, s.kernel_coefficient, grid.mass_view()};
+  if (s.kernel == "product") return ProductKernel{{}, s.kernel_coefficient, grid.mass_view()};
   PhysicalKernel k;
   k.mass = grid.mass_view();
   k.size = grid.size_view();
@@ -82,17 +82,25 @@ Coagulation::Coagulation(const MassGrid& grid, const CoagulationSettings& settin
 
 template <class Kernel>
 void Coagulation::evaluate_pairs(int first, int count, const Kernel& kernel) {
+  using SpeciesScratch =
+      Kokkos::View<typename Kernel::Species*, ExecSpace::scratch_memory_space, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
   auto kc = k_coag_;
   auto kf = k_frag_;
   auto pi = tables_.pair_i;
   auto pj = tables_.pair_j;
-  const int pairs = tables_.pairs;
+  const int pairs = tables_.pairs, n = tables_.species;
+  const auto policy =
+      detail::cell_teams(count, team_size_).set_scratch_size(0, Kokkos::PerTeam(SpeciesScratch::shmem_size(n)));
   Kokkos::parallel_for(
-      "coagulation::pair_kernels", detail::cell_teams(count, team_size_), KOKKOS_LAMBDA(const detail::Member& team) {
+      "coagulation::pair_kernels", policy, KOKKOS_LAMBDA(const detail::Member& team) {
         const int lc = team.league_rank(), c = first + lc;
+        const auto cell = kernel.cell(c);
+        const SpeciesScratch species(team.team_scratch(0), n);
+        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { species(k) = kernel.species(cell, k); });
+        team.team_barrier();
         Kokkos::parallel_for(Kokkos::TeamThreadRange(team, pairs), [&](int p) {
           const int i = pi(p), j = pj(p);
-          const PairRate r = kernel(c, i, j);
+          const PairRate r = kernel.pair(cell, c, i, j, species(i), species(j));
           const Real half = i == j ? 0.5 : 1.0;
           const Real pf = math::min(math::max(r.p_frag, Real(0)), Real(1));
           kc(lc, p) = half * r.K * (1.0 - pf);

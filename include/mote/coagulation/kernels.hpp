@@ -3,7 +3,12 @@
 //   KOKKOS_INLINE_FUNCTION PairRate operator()(int cell, int i, int j) const
 // returning the kernel K_ij (volume per time; area per time for the
 // vertically integrated kernel) and the fragmentation probability of species
-// i and j in `cell`. Coagulation::integrate is instantiated for each of them.
+// i and j in `cell`, and the same split in three for the solver's pair loop:
+// cell(c) (the gas terms of a cell), species(cell, k) (one species' terms in
+// it) and pair(cell, c, i, j, species_i, species_j), so a cell's n species
+// terms are computed once for its n (n + 1) / 2 pairs. The split gives the
+// same values, bit for bit, as operator(), which is written with it.
+// Coagulation::integrate is instantiated for each of them.
 //  * ConstantKernel, AdditiveKernel, ProductKernel: K = K0, K0 (m_i + m_j),
 //    K0 m_i m_j (Smoluchowski test kernels with analytic solutions, VALIDATION E1/E2).
 //  * PhysicalKernel: K_ij = sigma_ij dv_ij (RBO24 eq. 56) with dv_ij from eq. 57-60
@@ -24,18 +29,30 @@ struct PairRate {
   Real p_frag = 0;  // fragmentation probability (p_coag = 1 - p_frag)
 };
 
-struct ConstantKernel {
+/// The split interface of a kernel without per-cell or per-species terms.
+template <class Kernel>
+struct PairOnlyKernel {
+  struct Cell {};
+  struct Species {};
+  KOKKOS_INLINE_FUNCTION Cell cell(int) const { return {}; }
+  KOKKOS_INLINE_FUNCTION Species species(const Cell&, int) const { return {}; }
+  KOKKOS_INLINE_FUNCTION PairRate pair(const Cell&, int c, int i, int j, const Species&, const Species&) const {
+    return static_cast<const Kernel&>(*this)(c, i, j);
+  }
+};
+
+struct ConstantKernel : PairOnlyKernel<ConstantKernel> {
   Real K0 = 1.0;
   KOKKOS_INLINE_FUNCTION PairRate operator()(int, int, int) const { return {K0, 0.0}; }
 };
 
-struct AdditiveKernel {
+struct AdditiveKernel : PairOnlyKernel<AdditiveKernel> {
   Real K0 = 1.0;
   RealView1 mass;
   KOKKOS_INLINE_FUNCTION PairRate operator()(int, int i, int j) const { return {K0 * (mass(i) + mass(j)), 0.0}; }
 };
 
-struct ProductKernel {
+struct ProductKernel : PairOnlyKernel<ProductKernel> {
   Real K0 = 1.0;
   RealView1 mass;
   KOKKOS_INLINE_FUNCTION PairRate operator()(int, int i, int j) const { return {K0 * mass(i) * mass(j), 0.0}; }
@@ -66,34 +83,50 @@ struct PhysicalKernel {
   bool vertically_integrated = false;
   bool fragmentation = true;
 
-  KOKKOS_INLINE_FUNCTION PairRate operator()(int c, int i, int j) const {
-    const Real cs = gas.sound_speed(c), om = gas.omega(c), alpha = gas.alpha(c), dens = gas.density(c);
-    const Real ai = size(i), aj = size(j), mi = mass(i), mj = mass(j);
-    const Real H = cs / om;
-    // Stokes numbers and the gas volume density at the mid-plane / in the cell.
-    Real st_i, st_j, rho_g;
-    if (vertically_integrated) {
-      st_i = stokes_epstein_midplane(ai, rho_m, dens);
-      st_j = stokes_epstein_midplane(aj, rho_m, dens);
-      rho_g = dens / (math::sqrt(2.0 * math::pi()) * H);
-    } else {
-      st_i = stokes_epstein(ai, rho_m, dens, cs, om);
-      st_j = stokes_epstein(aj, rho_m, dens, cs, om);
-      rho_g = dens;
-    }
+  /// The gas terms of one cell, shared by its pairs.
+  struct Cell {
+    Real cs, om, alpha, dens;  // the GasCells values
+    Real H;                    // gas scale height c_s / Omega
+    Real re_inv_sqrt;          // Re^-1/2, Re = alpha c_s H / nu_mol (OC07 sec. 2)
+    Real kT;                   // mu m_H c_s^2
+  };
+  /// One species' terms in a cell, shared by its pairs.
+  struct Species {
+    TurbulentSpeciesTerms turbulent;  // its Stokes number and OC07 terms
+    Real h;                           // dust scale height (vertically integrated kernel), else H
+  };
+
+  KOKKOS_INLINE_FUNCTION Cell cell(int c) const {
+    Cell g;
+    g.cs = gas.sound_speed(c);
+    g.om = gas.omega(c);
+    g.alpha = gas.alpha(c);
+    g.dens = gas.density(c);
+    g.H = g.cs / g.om;
+    // The gas volume density at the mid-plane / in the cell.
+    const Real rho_g = vertically_integrated ? g.dens / (math::sqrt(2.0 * math::pi()) * g.H) : g.dens;
     // Turbulent Reynolds number Re = alpha c_s H / nu_mol, nu_mol = v_th lambda / 2 (OC07 sec. 2).
     const Real lambda = mu_mH / (rho_g * sigma_h2);
-    const Real nu_mol = 0.5 * math::sqrt(8.0 / math::pi()) * cs * lambda;
-    const Real re = alpha * cs * H / nu_mol;
-    const Real kT = mu_mH * cs * cs;
-    Real dv2 = brownian_dv2(mi, mj, kT) +
-               (dens > 0 ? alpha * cs * cs * turbulent_vrel2(st_i, st_j, 1.0 / math::sqrt(re)) : 0.0);
+    const Real nu_mol = 0.5 * math::sqrt(8.0 / math::pi()) * g.cs * lambda;
+    g.re_inv_sqrt = 1.0 / math::sqrt(g.alpha * g.cs * g.H / nu_mol);
+    g.kT = mu_mH * g.cs * g.cs;
+    return g;
+  }
+
+  KOKKOS_INLINE_FUNCTION Species species(const Cell& g, int k) const {
+    const Real a = size(k);
+    const Real st = vertically_integrated ? stokes_epstein_midplane(a, rho_m, g.dens)
+                                          : stokes_epstein(a, rho_m, g.dens, g.cs, g.om);
+    return {turbulent_species_terms(st, g.re_inv_sqrt),
+            vertically_integrated ? dust_scale_height(g.H, st, g.alpha) : g.H};
+  }
+
+  KOKKOS_INLINE_FUNCTION PairRate pair(const Cell& g, int c, int i, int j, const Species& si, const Species& sj) const {
+    const Real ai = size(i), aj = size(j);
+    const Real st_i = si.turbulent.st, st_j = sj.turbulent.st, h_i = si.h, h_j = sj.h;
+    Real dv2 = brownian_dv2(mass(i), mass(j), g.kT) +
+               (g.dens > 0 ? g.alpha * g.cs * g.cs * turbulent_vrel2(si.turbulent, sj.turbulent, g.re_inv_sqrt) : 0.0);
     // Laminar relative motion: dynamics velocities, or settling/drift estimates.
-    Real h_i = H, h_j = H;
-    if (vertically_integrated) {
-      h_i = dust_scale_height(H, st_i, alpha);
-      h_j = dust_scale_height(H, st_j, alpha);
-    }
     if (gas.dust_velocity.extent(0) > 0) {
       for (int d = 0; d < 3; ++d) {
         if (vertically_integrated && d == 1) continue;
@@ -105,15 +138,20 @@ struct PhysicalKernel {
              math::square(azimuthal_drift(st_i, hw) - azimuthal_drift(st_j, hw));
     }
     if (vertically_integrated) {
-      dv2 += math::square(settling_speed(h_i, st_i, om) - settling_speed(h_j, st_j, om));
+      dv2 += math::square(settling_speed(h_i, st_i, g.om) - settling_speed(h_j, st_j, g.om));
     } else if (gas.dust_velocity.extent(0) == 0 && gas.height.extent(0) > 0) {
       const Real z = gas.height(c);
-      dv2 += math::square(settling_speed(z, st_i, om) - settling_speed(z, st_j, om));
+      dv2 += math::square(settling_speed(z, st_i, g.om) - settling_speed(z, st_j, g.om));
     }
     const Real dv = math::sqrt(dv2);
     Real K = math::pi() * math::square(ai + aj) * dv;  // eq. 56, sigma_ij = pi (a_i + a_j)^2
     if (vertically_integrated) K /= math::sqrt(2.0 * math::pi() * (h_i * h_i + h_j * h_j));
     return {K, fragmentation ? fragmentation_probability(dv, v_frag) : 0.0};
+  }
+
+  KOKKOS_INLINE_FUNCTION PairRate operator()(int c, int i, int j) const {
+    const Cell g = cell(c);
+    return pair(g, c, i, j, species(g, i), species(g, j));
   }
 };
 

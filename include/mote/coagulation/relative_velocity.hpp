@@ -42,21 +42,41 @@ KOKKOS_INLINE_FUNCTION Real boundary_stokes_fit(Real st) {
   return st * (1.0 - b + math::sqrt(b * b + a * (1.0 - st) / (1.0 + st)));
 }
 
+/// The terms of OC07 eq. 17-18 that depend on one grain's Stokes number only
+/// (and on the cell's Re^-1/2): computed once per species, shared by its pairs.
+struct TurbulentSpeciesTerms {
+  Real st = 0;         // Stokes number
+  Real st_fit = 0;     // boundary_stokes_fit(st): St* if this grain is the larger of a pair
+  Real slow_eddy = 0;  // st / (1 + st), eq. 17
+  Real fast_eddy = 0;  // st^2 / (st + Re^-1/2), eq. 18
+};
+
+KOKKOS_INLINE_FUNCTION TurbulentSpeciesTerms turbulent_species_terms(Real st, Real re_inv_sqrt) {
+  return {st, boundary_stokes_fit(st), st / (1.0 + st), st * st / (st + re_inv_sqrt)};
+}
+
 /// V_rel^2 = dV_I^2 + dV_II^2 in units of the eddy velocity squared, alpha c_s^2
-/// (Ormel & Cuzzi 2007 eq. 17-18; RBO24 eq. 60), for Stokes numbers st1, st2
-/// and inverse square root of the turbulent Reynolds number re_inv_sqrt.
-KOKKOS_INLINE_FUNCTION Real turbulent_vrel2(Real st1, Real st2, Real re_inv_sqrt) {
-  const Real st_max = math::max(st1, st2);
-  const Real sts = math::max(boundary_stokes_fit(st_max), re_inv_sqrt);
+/// (Ormel & Cuzzi 2007 eq. 17-18; RBO24 eq. 60), from the two grains' terms and
+/// the inverse square root of the turbulent Reynolds number re_inv_sqrt.
+KOKKOS_INLINE_FUNCTION Real turbulent_vrel2(const TurbulentSpeciesTerms& g1, const TurbulentSpeciesTerms& g2,
+                                            Real re_inv_sqrt) {
+  const Real st1 = g1.st, st2 = g2.st;
+  const Real sts = math::max(st1 >= st2 ? g1.st_fit : g2.st_fit, re_inv_sqrt);
   // Class I (slow eddies, t > t*): OC07 eq. 17.
-  const Real c1 = st1 * (st1 / (sts + st1) - st1 / (1.0 + st1));
-  const Real c2 = st2 * (st2 / (sts + st2) - st2 / (1.0 + st2));
+  const Real c1 = st1 * (st1 / (sts + st1) - g1.slow_eddy);
+  const Real c2 = st2 * (st2 / (sts + st2) - g2.slow_eddy);
   const Real sum = st1 + st2;
   const Real v_i = sum > 0 ? (st1 - st2) / sum * (c1 - c2) : 0.0;
   // Class II (fast eddies, t_eta < t < t*): OC07 eq. 18.
-  const Real d1 = (sts - re_inv_sqrt) + st1 * st1 / (st1 + sts) - st1 * st1 / (st1 + re_inv_sqrt);
-  const Real d2 = (sts - re_inv_sqrt) + st2 * st2 / (st2 + sts) - st2 * st2 / (st2 + re_inv_sqrt);
+  const Real d1 = (sts - re_inv_sqrt) + st1 * st1 / (st1 + sts) - g1.fast_eddy;
+  const Real d2 = (sts - re_inv_sqrt) + st2 * st2 / (st2 + sts) - g2.fast_eddy;
   return math::max(v_i + d1 + d2, Real(0));
+}
+
+/// V_rel^2 for Stokes numbers st1, st2 (the two-grain form of the above).
+KOKKOS_INLINE_FUNCTION Real turbulent_vrel2(Real st1, Real st2, Real re_inv_sqrt) {
+  return turbulent_vrel2(turbulent_species_terms(st1, re_inv_sqrt), turbulent_species_terms(st2, re_inv_sqrt),
+                         re_inv_sqrt);
 }
 
 /// Dust scale height with turbulent mixing against settling, h = H / sqrt(1 + St/alpha)
