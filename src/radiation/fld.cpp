@@ -527,6 +527,8 @@ FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, 
     const double tolerance = change <= max_change ? exact : std::fmin(std::fmax(exact, forcing * change), 0.5);
     const auto report = step(std::numeric_limits<double>::infinity(), fields, state, tolerance);
     ++done.solves;
+    if (report.attempts.size() > 1)  // the configured preconditioner failed; a fallback rung solved it
+      logging::warn("radiation: steady-state solve ", done.solves, " (tolerance ", tolerance, "): ", report.summary());
     done.iterations += report.total_iterations();
     for (const auto& attempt : report.attempts) done.solve_seconds += attempt.seconds;
     done.last_residual = report.last().residual;
