@@ -57,12 +57,22 @@ int SolveReport::total_iterations() const {
   return total;
 }
 
+namespace {
+
+/// "worst row N[, its name]" of a failed attempt.
+std::string worst_row_text(const SolveAttempt& a) {
+  return "worst row " + std::to_string(a.worst_row) + (a.worst_row_name.empty() ? "" : ", " + a.worst_row_name);
+}
+
+}  // namespace
+
 std::string SolveReport::summary() const {
   std::ostringstream out;
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const auto& a = attempts[i];
     out << (i ? "; " : "") << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
         << " iterations, residual " << a.residual << " (L2 " << a.l2_residual << "), " << a.seconds << " s";
+    if (!a.converged && a.worst_row >= 0) out << " (" << worst_row_text(a) << ")";
   }
   return out.str();
 }
@@ -553,19 +563,21 @@ void LinearSolver::set_tolerance(Real tolerance) {
 
 SolveReport LinearSolver::solve(const Vector& b, const Vector& x, const RowDescriber& describe) {
   SolveReport report = try_solve(b, x);
-  if (!report.converged) throw SolveFailure(failure_message(report, describe), report);
+  if (describe)
+    for (auto& a : report.attempts)
+      if (a.worst_row >= 0) a.worst_row_name = describe(a.worst_row);
+  if (!report.converged) throw SolveFailure(failure_message(report), report);
   return report;
 }
 
-std::string LinearSolver::failure_message(const SolveReport& report, const RowDescriber& describe) const {
+std::string LinearSolver::failure_message(const SolveReport& report) const {
   std::ostringstream out;
   out << name_ << ": the linear solve failed on every rung (tolerance " << tolerance_
       << "); the previous solution is kept.";
   for (const auto& a : report.attempts) {
     out << "\n  " << a.preconditioning.name() << ": " << a.stop_reason << " after " << a.iterations
         << " iterations, fractional residual " << a.residual << " (L2 " << a.l2_residual << ")";
-    if (a.worst_row >= 0)
-      out << " (worst row " << a.worst_row << (describe ? ", " + describe(a.worst_row) : std::string()) << ")";
+    if (a.worst_row >= 0) out << " (" << worst_row_text(a) << ")";
     const std::size_t shown = std::min<std::size_t>(a.history.size(), 8);
     out << "; residual history";
     for (std::size_t i = 0; i < shown; ++i) out << " " << a.history[i];

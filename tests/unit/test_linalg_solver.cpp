@@ -189,10 +189,15 @@ TEST(LinearSolver, FallbackLadderSolvesWhatPlainBicgstabCannot) {
   const auto b = rhs(n);
   const auto A = to_dense(solver.matrix());
   const linalg::Vector x("x", n);
-  const auto report = solver.solve(from_host(b), x);
+  const auto report = solver.solve(from_host(b), x, [](int row) { return "name of " + std::to_string(row); });
   std::cout << "ladder: " << report.summary() << "\n";
   ASSERT_GE(report.attempts.size(), 2u);
   EXPECT_FALSE(report.attempts[0].converged);
+  // The run log's line names the failed rung's worst row through the caller's describer.
+  const int worst = report.attempts[0].worst_row;
+  ASSERT_GE(worst, 0);
+  EXPECT_NE(report.summary().find("worst row " + std::to_string(worst) + ", name of " + std::to_string(worst)),
+            std::string::npos);
   EXPECT_EQ(report.attempts[0].preconditioning.name(), "none");
   EXPECT_EQ(report.attempts[1].preconditioning.name(), "ILU(0)");
   EXPECT_TRUE(report.attempts[1].converged);

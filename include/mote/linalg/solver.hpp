@@ -91,12 +91,13 @@ struct SolveAttempt {
   Preconditioning preconditioning;
   bool converged = false;
   int iterations = 0;
-  int restarts = 0;           // rho -> 0 restarts and true-residual restarts
-  int worst_row = -1;         // row of the largest fractional residual when it failed
-  Real residual = 0.0;        // final max fractional residual
-  Real l2_residual = 0.0;     // ||r||_2 / max(||b||_2, ||A x||_2) of the last true residual
-  std::string stop_reason;    // "converged", "iteration limit", "breakdown: omega = 0", ...
-  std::vector<Real> history;  // max fractional residual after each iteration (entry 0: initial)
+  int restarts = 0;            // rho -> 0 restarts and true-residual restarts
+  int worst_row = -1;          // row of the largest fractional residual when it failed
+  std::string worst_row_name;  // the caller's name of that row (solve's RowDescriber), if it gave one
+  Real residual = 0.0;         // final max fractional residual
+  Real l2_residual = 0.0;      // ||r||_2 / max(||b||_2, ||A x||_2) of the last true residual
+  std::string stop_reason;     // "converged", "iteration limit", "breakdown: omega = 0", ...
+  std::vector<Real> history;   // max fractional residual after each iteration (entry 0: initial)
   double seconds = 0.0;
 };
 
@@ -105,7 +106,7 @@ struct SolveReport {
   std::vector<SolveAttempt> attempts;
   const SolveAttempt& last() const { return attempts.back(); }
   int total_iterations() const;
-  /// One line: rung, iterations, residual, time (for the run log).
+  /// One line: rung, iterations, residual, time, and where a rung failed its worst row (for the run log).
   std::string summary() const;
 };
 
@@ -172,7 +173,7 @@ class LinearSolver {
   void residual_of(const Vector& x, const Vector& r);
   /// y = A u with the ghost values of u brought across first.
   void apply_matrix(const Vector& u, const Vector& y);
-  std::string failure_message(const SolveReport& report, const RowDescriber& describe) const;
+  std::string failure_message(const SolveReport& report) const;
 
   std::string name_;
   CrsPattern pattern_;
