@@ -157,15 +157,21 @@ void restart(Work& w, const Distribution& d) {
       });
 }
 
-/// max_i |r_i| / max(|b_i|, |A_ii x_i|), non-finite rows counted as HUGE_VAL.
+/// The floor of row i: the solve's, or |A_ii| u_i of the caller's unknown floor u_i if larger.
+KOKKOS_INLINE_FUNCTION Real row_floor(Real floor, Real diagonal, Real unknown_floor) {
+  return math::fmax(floor, math::fabs(diagonal) * unknown_floor);
+}
+
+/// max_i |r_i| / max(|b_i|, |A_ii x_i|, row floor), non-finite rows counted as HUGE_VAL.
 void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x,
-                             const Vector& r, Real floor, const Scalar& result) {
+                             const Vector& r, Real floor, const Vector& unknown_floor, const Scalar& result) {
   const auto diagonal = pattern.diagonal;
   const auto values = A.values;
   Kokkos::parallel_reduce(
       "linalg::bicgstab_fractional_residual", Kokkos::RangePolicy<ExecSpace>(0, pattern.n_rows),
       KOKKOS_LAMBDA(int i, Real& m) {
-        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)), floor);
+        const Real a = values(diagonal(i));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(a * x(i)), row_floor(floor, a, unknown_floor(i)));
         m = math::fmax(m, math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL));
       },
       Kokkos::Max<Real, MemSpace>(result));
@@ -174,8 +180,8 @@ void max_fractional_residual(const CrsPattern& pattern, const CrsMatrix& A, cons
 /// The convergence measures of r, rho_next = (r_hat, r), and rho = rho_next
 /// for the next iteration.
 Measures measure(Work& w, const Distribution& d, const CrsPattern& pattern, const CrsMatrix& A, const Vector& b,
-                 const Vector& x, Real floor) {
-  max_fractional_residual(pattern, A, b, x, w.r, floor, w.res_max);
+                 const Vector& x, Real floor, const Vector& unknown_floor) {
+  max_fractional_residual(pattern, A, b, x, w.r, floor, unknown_floor, w.res_max);
   dot(d, w.rr, w.r, w.r);
   dot(d, w.rho_next, w.r_hat, w.r);
   const View<Real*> packed = w.packed;
@@ -239,7 +245,7 @@ void full_step(Work& w, const Distribution& d, const Vector& p_hat, const Vector
 
 /// Row of the largest fractional residual of r.
 int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, const Vector& x, const Vector& r,
-              Real floor) {
+              Real floor, const Vector& unknown_floor) {
   using Loc = Kokkos::MaxLoc<Real, int>;
   const auto diagonal = pattern.diagonal;
   const auto values = A.values;
@@ -247,7 +253,8 @@ int worst_row(const CrsPattern& pattern, const CrsMatrix& A, const Vector& b, co
   par_reduce(
       "linalg::bicgstab_worst_row", 0, pattern.n_rows,
       KOKKOS_LAMBDA(int i, Loc::value_type& m) {
-        const Real f = fractional_residual(r(i), b(i), math::fabs(values(diagonal(i)) * x(i)), floor);
+        const Real a = values(diagonal(i));
+        const Real f = fractional_residual(r(i), b(i), math::fabs(a * x(i)), row_floor(floor, a, unknown_floor(i)));
         const Real value = math::isfinite(f) ? f : static_cast<Real>(HUGE_VAL);
         if (value > m.val) {
           m.val = value;
@@ -388,6 +395,7 @@ LinearSolver::LinearSolver(const std::string& name, CrsPattern pattern, SolverSe
       distribution_(std::move(distribution)),
       b_scaled_(name + "::Db", pattern_.n_rows),
       x_initial_(name + "::x0", pattern_.n_rows),
+      unknown_floor_(name + "::unknown_floor", pattern_.n_rows),
       work_(std::make_unique<detail::BicgstabWorkspace>(name, pattern_.n_rows, pattern_.n_cols)) {
   settings_.validate();
   if (!distribution_.distributed()) distribution_.owned = pattern_.n_rows;
@@ -445,7 +453,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   auto finish = [&](const std::string& reason, bool converged) {
     out.stop_reason = reason;
     out.converged = converged;
-    if (!converged) out.worst_row = worst_row(pattern_, scaled_, b_scaled_, x, work_->r, floor);
+    if (!converged) out.worst_row = worst_row(pattern_, scaled_, b_scaled_, x, work_->r, floor, unknown_floor_);
     Kokkos::fence();
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
@@ -477,7 +485,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   };
   residual_of(x, w.r);
   restart(w, d);
-  Measures m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
+  Measures m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor, unknown_floor_);
   out.history.push_back(m.residual);
   out.residual = m.residual;
   if (confirmed(m)) return finish("converged", true);
@@ -486,7 +494,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
   while (out.iterations < settings_.max_iterations) {
     ++out.iterations;
     iterate(ilu, p_hat, s_hat, x);
-    m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
+    m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor, unknown_floor_);
     out.history.push_back(m.residual);
     out.residual = m.residual;
     if (!(m.residual < HUGE_VAL)) return finish("non-finite residual", false);
@@ -494,7 +502,7 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
       scales = l2_scales(d, pattern_, scaled_, b_scaled_, head(w.r, n), x);
     if (accepted(m, tol) && scales.hold(m.rr, guard)) {
       residual_of(x, w.r);
-      m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor);
+      m = measure(w, d, pattern_, scaled_, b_scaled_, x, floor, unknown_floor_);
       out.residual = m.residual;
       if (confirmed(m)) return finish("converged", true);
       guard_held_back = accepted(m, tol);

@@ -268,11 +268,13 @@ void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, i
         const auto value = [&](int a, int d) { return map.value_E(E, E_ext, a, d, b); };
         const Real e1R = Rc(i + 1) - Rc(i - 1), e1Z = Zc(i + 1, j) - Zc(i - 1, j);
         const Real e2R = 0.0, e2Z = Zc(i, j + 1) - Zc(i, j - 1);  // a column has one R
-        const Real d1 = value(i + 1, j) - value(i - 1, j), d2 = value(i, j + 1) - value(i, j - 1);
+        const Real inner = value(i - 1, j), outer = value(i + 1, j), lower = value(i, j - 1), upper = value(i, j + 1);
+        const Real d1 = outer - inner, d2 = upper - lower;
         const Real det = e1R * e2Z - e1Z * e2R;
         const Real gR = (d1 * e2Z - d2 * e1Z) / det, gZ = (e1R * d2 - e2R * d1) / det;
         const Real chi = extinction(i, j, b);
-        const Real lambda = kley_limiter(limiter_ratio(math::sqrt(gR * gR + gZ * gZ), chi, E(i, j, b)));
+        const Real E_scale = limiter_energy_scale(E(i, j, b), inner, outer, lower, upper);
+        const Real lambda = kley_limiter(limiter_ratio(math::sqrt(gR * gR + gZ * gZ), chi, E_scale));
         // Where E is nearly uniform (R -> 0 in a cell however thin) lambda -> 1/3 and c / 3 chi is
         // unbounded; c r, r the distance to the star, bounds it (a departure from eq. 41). It binds
         // only in cells thin over r whose E varies on a scale L longer than r, where the flux
@@ -380,6 +382,23 @@ void assemble_temperature(const mesh::Grid& grid, const CellMap& map, Real inv_d
       });
 }
 
+/// The unknown floors of the solve: c E^b of a cell is needed to the tolerance
+/// relative to the larger of itself and the tolerance x B^n of the cell, B to
+/// the tolerance relative to itself (floor 0). A band below that floor
+/// carries less than that fraction of the cell's energy: the far Wien tail of
+/// a cold cell, round-off of either sign, is not chased to relative accuracy.
+void band_floors(const mesh::Grid& grid, const CellMap& map, Real fraction, const linalg::Vector& x,
+                 const linalg::Vector& floors) {
+  const int nb = map.nb;
+  par_for(
+      "radiation::fld_band_floors", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
+      KOKKOS_LAMBDA(int i, int j) {
+        const int cell = map.cell(i, j);
+        floors(map.row_B(cell)) = 0.0;
+        for (int b = 0; b < nb; ++b) floors(map.row_E(cell, b)) = fraction * x(map.row_B(cell));
+      });
+}
+
 /// x = (c E^n, B^n) as the initial guess.
 void initial_guess(const mesh::Grid& grid, const CellMap& map, Real c, Real sigma, const FldState& state,
                    const linalg::Vector& x) {
@@ -473,6 +492,7 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   assemble(inv_dt, fields, state);
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
   initial_guess(grid_, map, constants_.c, constants_.sigma, state, x_);
+  band_floors(grid_, map, settings_.solver.tolerance, x_, solver_->unknown_floors());
   const int per_cell = nb_ + 1;
   const int i_offset = grid_.i_offset;
   const auto describe = [map, per_cell, i_offset](int row) {

@@ -6,7 +6,8 @@ and (non-isothermal) the temperature solver's first steady state (up to the
 deck's temperature.steady_solves lagged solves) succeed, and the run stops at
 run.max_steps = 1 with its checkpoint. A deck whose first steady state needs
 more solves than it allows stops with exit code 3 at its first step: the
-non-isothermal decks needed 38-40 against the default 30.
+non-isothermal decks needed 38-40 against the default 30 (34 and 43 since the
+FLD band floor and limiter change of 2026-12-06 (g)).
 
 usage: transition_disc_full_decks.py EXE DECK_DIR WORKDIR MPIEXEC [ARGS ...]
 """

@@ -407,6 +407,34 @@ TEST(LinearSolver, NonFiniteMatrixIsRefusedBeforeIterating) {
   EXPECT_EQ(to_host(x), guess);
 }
 
+/// A = [[2, 1, 0], [1, 2, 0], [0, 0, 2]], b = (3, 3, 2e-9), x0 = (1, 1, 0):
+/// rows 0 and 1 hold; row 2 is off by its whole right-hand side, 2e-9, above
+/// the solve's floor (1e-12 of the largest row) but below |A_22| u_2 = 2e-3
+/// for an unknown floor u_2 = 1e-3. With the floor the initial guess is
+/// accepted, x_2 = 0 within its absolute accuracy; without it the solve
+/// iterates to x_2 = 1e-9.
+TEST(LinearSolver, UnknownFloorsHoldRowsToAnAbsoluteAccuracy) {
+  const Dense A{{2, 1, 0}, {1, 2, 0}, {0, 0, 2}};
+  const std::vector<double> b{3.0, 3.0, 2e-9};
+  for (const double u : {0.0, 1e-3}) {
+    LinearSolver solver("test::floors", dense_pattern(3), plain_settings(1e-4));
+    set_dense(solver, A);
+    Kokkos::deep_copy(solver.unknown_floors(), 0.0);
+    Kokkos::deep_copy(Kokkos::subview(solver.unknown_floors(), 2), u);
+    const auto x = from_host({1.0, 1.0, 0.0});
+    const auto report = solver.solve(from_host(b), x);
+    EXPECT_TRUE(report.converged) << u;
+    const auto xh = to_host(x);
+    if (u > 0.0) {
+      EXPECT_EQ(report.last().iterations, 0);
+      EXPECT_EQ(xh[2], 0.0);
+    } else {
+      EXPECT_GE(report.last().iterations, 1);
+      EXPECT_NEAR(xh[2], 1e-9, 1e-13);
+    }
+  }
+}
+
 TEST(LinearSolver, FractionalResidualFollowsRbo24) {
   EXPECT_DOUBLE_EQ(linalg::fractional_residual(0.1, 1.0, 0.9), 0.1 / 1.0);
   EXPECT_DOUBLE_EQ(linalg::fractional_residual(-3.0, 1.0, 4.0), 3.0 / 4.0);

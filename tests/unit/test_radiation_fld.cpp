@@ -122,6 +122,12 @@ TEST(FluxLimiter, ThickAndThinLimits) {
   EXPECT_GT(lambda_empty, 0.0);
   EXPECT_LT(lambda_empty, 1e-29);
   EXPECT_EQ(radiation::limiter_ratio(0.0, 1.0, 0.0), 0.0);
+  // R's E: the cell's where positive, else the RMS over the cell and its four neighbours, of either
+  // sign, without under- or overflow.
+  EXPECT_EQ(radiation::limiter_energy_scale(2.0, 7.0, -1.0, 0.0, 3.0), 2.0);
+  EXPECT_DOUBLE_EQ(radiation::limiter_energy_scale(-3e-200, 3e-200, -3e-200, 3e-200, 3e-200), 3e-200);
+  EXPECT_DOUBLE_EQ(radiation::limiter_energy_scale(0.0, 0.0, 0.0, 5e200, 0.0), 5e200 / std::sqrt(5.0));
+  EXPECT_EQ(radiation::limiter_energy_scale(0.0, 0.0, 0.0, 0.0, 0.0), 0.0);
 }
 
 void fill(const RealView2& v, double value) { Kokkos::deep_copy(v, value); }
@@ -284,6 +290,60 @@ TEST(FldD4, EquilibriumIsKept) {
     for (int j = grid.j_begin(); j < grid.j_end(); ++j) worst = std::max(worst, std::fabs(T(i, j) / 50.0 - 1.0));
   EXPECT_LE(worst, 1e-12);
   EXPECT_EQ(report.total_iterations(), 0);
+}
+
+// ---- Round-off bands ---------------------------------------------------------
+
+/// A band that carries no energy (the Wien tail of a cold cell) comes out of a
+/// solve as round-off of either sign. Its rows must stay coupled: with the
+/// cell's own E in R (eq. 43) every cell of negative E got R = 1e30 and D ~ 0,
+/// and, optically thin, a diagonal ~1e-12 of its neighbours' (ILU(0) then
+/// built pivots of 1e-12 and of either sign on RBO24's transition disc). Here
+/// band 0 is thin (rho kappa dx ~ 1e-10) and holds +-1e-30 of the others in a
+/// checkerboard: its rows' diagonals per volume must agree to a factor 100
+/// (they spread by 60 from the cells' sizes; 2.7e4 with the cell's own E).
+TEST(FldRoundOffBand, RowsOfABandOfEitherSignRoundOffStayCoupled) {
+  const mesh::Grid grid(disc_patch(), core::Comm::world());
+  const std::vector<double> edges = {1e-4, 1e-3, 1e-2, 1e-1, 1.0};
+  FldSolver fld(grid, reflecting(edges, 1e-8), radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  uniform_medium(fld, fields);
+  auto k = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
+  auto chi = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
+  auto state = fld.make_state();
+  fill(state.T, 50.0);
+  fld.equilibrate_radiation(state);
+  auto E = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E);
+  for (std::size_t i = 0; i < E.extent(0); ++i)
+    for (std::size_t j = 0; j < E.extent(1); ++j) {
+      k(i, j, 0) = 1e-24;
+      chi(i, j, 0) = 2e-24;
+      E(i, j, 0) = ((i + j) % 2 ? 1e-30 : -1e-30) * E(i, j, 2);
+    }
+  Kokkos::deep_copy(fields.absorption, k);
+  Kokkos::deep_copy(fields.extinction, chi);
+  Kokkos::deep_copy(state.E, E);
+  const auto report = fld.step(1e5, fields, state);
+  EXPECT_TRUE(report.converged);
+  EXPECT_EQ(report.attempts.size(), 1u);  // no fallback rung
+  const auto& A = fld.matrix();
+  auto row_map = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.row_map);
+  auto entries = Kokkos::create_mirror_view_and_copy(HostSpace(), A.graph.entries);
+  auto values = Kokkos::create_mirror_view_and_copy(HostSpace(), A.values);
+  double lo = HUGE_VAL, hi = 0.0;
+  const int per_cell = fld.bands() + 1;
+  for (int i = grid.i_begin(); i < grid.i_end(); ++i)
+    for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+      const int row = ((i - grid.ng) * grid.nt + (j - grid.ng)) * per_cell;  // band 0 of cell (i, j)
+      for (auto e = row_map(row); e < row_map(row + 1); ++e)
+        if (entries(e) == row) {
+          lo = std::min(lo, values(e) / grid.V_h(i, j));
+          hi = std::max(hi, values(e) / grid.V_h(i, j));
+        }
+    }
+  std::cout << "round-off band: diagonal per volume from " << lo << " to " << hi << "\n";
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LE(hi / lo, 100.0);
 }
 
 // ---- Open sides ------------------------------------------------------------

@@ -10,7 +10,10 @@
 // row's diagonal term:
 //   max_i |r_i| / max(|b_i|, |A_ii x_i|, floor) <= tolerance,
 // floor = relative_floor x max_k max(|b_k|, |A_kk x0_k|) at the start of the
-// solve, checked again on the true residual b - A x before it is accepted. Row
+// solve, or |A_ii| u_i where the caller set a larger absolute floor u_i for
+// unknown i (unknown_floors(): the accuracy it needs of x_i, e.g. of a
+// component that carries a negligible part of its group's total), checked
+// again on the true residual b - A x before it is accepted. Row
 // scaling leaves it unchanged; rows whose terms cancel (radiative
 // equilibrium, a steady state with b_i = 0) are measured against their
 // diagonal term. The accepted true residual must also pass an L2 guard,
@@ -147,6 +150,9 @@ class LinearSolver {
 
   /// The matrix whose values the caller writes before each solve.
   const CrsMatrix& matrix() const { return matrix_; }
+  /// Absolute floors u_i of the unknowns (zero until the caller writes them):
+  /// row i is measured against at least |A_ii| u_i (see above).
+  const Vector& unknown_floors() const { return unknown_floor_; }
   const CrsPattern& pattern() const { return pattern_; }
   const SolverSettings& settings() const { return settings_; }
   /// Non-zeros of the ILU(fill_level) factors L + U (0 until that rung was needed).
@@ -186,6 +192,7 @@ class LinearSolver {
   CrsPattern block_pattern_;                 // the owned columns of each row (the pattern itself on one rank)
   CrsMatrix block_;                          // D^-1 A on block_pattern_, what ILU factorises
   Vector b_scaled_, x_initial_, x_columns_;  // x_columns_: x with its ghost entries
+  Vector unknown_floor_;
   std::unique_ptr<detail::BicgstabWorkspace> work_;
   std::map<int, std::unique_ptr<IluFactors>> factors_;
 };
