@@ -159,18 +159,18 @@ DiscTemperature::DiscTemperature(const mesh::Grid& grid, GasDisc& gas, DustDynam
 }
 
 void DiscTemperature::refresh_band_means(const RealView2& T) {
-  radiation::fill_fld_opacities_at(opacities_, rho_dust_, gas_.fields().rho, kappa_gas_, T, grid_, fields_);
+  radiation::fill_fld_opacities_at(opacities_, stellar_extinction_, stellar_absorption_, T, grid_, fields_);
 }
 
 void DiscTemperature::prepare_fields() {
   const GasFields& gas = gas_.fields();
   copy_dust_densities(dust_.W, rho_dust_);
+  radiation::fill_stellar_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, stellar_extinction_,
+                                    stellar_absorption_);
   if (band_means_at_cell_T_)
     refresh_band_means(state_.T);
   else
     radiation::fill_fld_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, fields_);
-  radiation::fill_stellar_opacities(opacities_, rho_dust_, gas.rho, kappa_gas_, stellar_extinction_,
-                                    stellar_absorption_);
   star_.heat(stellar_extinction_, stellar_absorption_, fields_.heating, fields_.scattering_source);
   absorbed_ = radiation::absorbed_power(grid_, fields_);
   if (settings_.viscous_heating) add_viscous_heating(grid_, gas, fields_.heating);

@@ -82,13 +82,15 @@ void fill_fld_opacities(const DustOpacities& opacities, const RealView3& rho_dus
   weighted_sum("radiation::fld_extinction", opacities.rosseland_total, rho_dust, rho_gas, kappa_gas, fields.extinction);
 }
 
-void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
-                           Real kappa_gas, const RealView2& T, const mesh::Grid& grid, const FldFields& fields) {
-  const int ns = static_cast<int>(opacities.stellar_absorption.extent(0));
+void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& extinction_at_bins,
+                           const RealView3& absorption_at_bins, const RealView2& T, const mesh::Grid& grid,
+                           const FldFields& fields) {
   const int nb = static_cast<int>(opacities.band_first_bin.extent(0)) - 1;
-  if (static_cast<int>(rho_dust.extent(2)) != ns || static_cast<int>(fields.absorption.extent(2)) != nb)
-    throw std::invalid_argument("radiation: species or band counts differ between opacities and fields");
-  auto k_abs = opacities.stellar_absorption, k_ext = opacities.stellar_extinction;
+  if (extinction_at_bins.extent(2) != opacities.stellar_absorption.extent(1) ||
+      absorption_at_bins.extent(2) != opacities.stellar_absorption.extent(1) ||
+      static_cast<int>(fields.absorption.extent(2)) != nb)
+    throw std::invalid_argument("radiation: bin or band counts differ between opacities and fields");
+  auto k_abs = absorption_at_bins, k_ext = extinction_at_bins;
   auto edges = opacities.bin_edges_cm;
   auto first = opacities.band_first_bin;
   auto absorption = fields.absorption, extinction = fields.extinction;
@@ -96,26 +98,18 @@ void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_
   par_for(
       "radiation::fld_opacities_at_T", 0, grid.nr_total(), 0, grid.nt_total(), KOKKOS_LAMBDA(int i, int j) {
         const Real t = T(math::min(math::max(i, i0), i1), math::min(math::max(j, j0), j1));
-        const Real gas = rho_gas(i, j) * kappa_gas;
         PlanckEdge short_edge = planck_edge(edges(0), t);  // of the bin
         for (int b = 0; b < nb; ++b) {
-          const int l0 = first(b), l1 = first(b + 1);
           Real wp = 0, sp = 0, wr = 0, sr = 0;  // the weights are > 0 (band_weight_floor)
-          for (int l = l0; l < l1; ++l) {
-            Real ka = gas, kt = gas;
-            for (int s = 0; s < ns; ++s) {
-              ka += rho_dust(i, j, s) * k_abs(s, l);
-              kt += rho_dust(i, j, s) * k_ext(s, l);
-            }
-            kt = math::max(kt, Real(1e-300));
+          for (int l = first(b); l < first(b + 1); ++l) {
             const PlanckEdge long_edge = planck_edge(edges(l + 1), t);
             Real p, r;
             band_mean_weights(short_edge, long_edge, t, p, r);
             short_edge = long_edge;
             wp += p;
-            sp += p * ka;
+            sp += p * k_abs(i, j, l);
             wr += r;
-            sr += r / kt;
+            sr += r / math::max(k_ext(i, j, l), Real(1e-300));
           }
           absorption(i, j, b) = sp / wp;
           extinction(i, j, b) = wr / sr;

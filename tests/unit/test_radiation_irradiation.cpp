@@ -285,7 +285,9 @@ TEST(DustOpacities, LocalBandMeansAreTheMixturesMeansAtTheCellTemperature) {
   settings.band_edges_cm = fld_bands;
   radiation::FldSolver fld(grid, settings, radiation::RadiationConstants::in(cgs));
   auto fields = fld.make_fields();
-  radiation::fill_fld_opacities_at(kappa, rho_dust, rho_gas, kappa_gas, T, grid, fields);
+  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), nl), abs("abs", grid.nr_total(), grid.nt_total(), nl);
+  radiation::fill_stellar_opacities(kappa, rho_dust, rho_gas, kappa_gas, ext, abs);
+  radiation::fill_fld_opacities_at(kappa, ext, abs, T, grid, fields);
   auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
   auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
   // The mixture as one "species" per unit volume: absorption with the gas floor, scattering without.
@@ -314,7 +316,8 @@ TEST(DustOpacities, LocalBandMeansAreTheMixturesMeansAtTheCellTemperature) {
   // One species, no gas, T = T_binning everywhere: the fixed means.
   Kokkos::deep_copy(Kokkos::subview(rho_dust, Kokkos::ALL, Kokkos::ALL, 1), 0.0);
   Kokkos::deep_copy(T, 100.0);
-  radiation::fill_fld_opacities_at(kappa, rho_dust, rho_gas, 0.0, T, grid, fields);
+  radiation::fill_stellar_opacities(kappa, rho_dust, rho_gas, 0.0, ext, abs);
+  radiation::fill_fld_opacities_at(kappa, ext, abs, T, grid, fields);
   auto a_local = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.absorption);
   auto x_local = Kokkos::create_mirror_view_and_copy(HostSpace(), fields.extinction);
   radiation::fill_fld_opacities(kappa, rho_dust, rho_gas, 0.0, fields);

@@ -39,13 +39,15 @@ struct DustOpacities {
 void fill_fld_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
                         Real kappa_gas, const FldFields& fields);
 
-/// The same fields from means over each band's stellar bins taken per cell at its temperature T (K)
-/// and for the cell's mixture: fields.absorption(i, j, b) the Planck mean of sum_s rho_s kappa_abs,s +
-/// rho_g kappa_gas, fields.extinction the Rosseland mean of the total opacity likewise. A band
-/// without weight at T (far in the Wien tail) takes the plain means over its bins. Ghost cells take
-/// the temperature of the nearest active cell of `grid`.
-void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
-                           Real kappa_gas, const RealView2& T, const mesh::Grid& grid, const FldFields& fields);
+/// The same fields from means over each band's stellar bins taken per cell at its temperature T (K):
+/// fields.absorption(i, j, b) the Planck mean of the cell's absorption at the bins, fields.extinction
+/// the Rosseland mean of its extinction, from the mixtures (dust and the gas floor) that
+/// fill_stellar_opacities gives (the species summed once per update, not once per lagged solve).
+/// A band without weight at T (far in the Wien tail) takes the plain means over its bins. Ghost
+/// cells take the temperature of the nearest active cell of `grid`.
+void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& extinction_at_bins,
+                           const RealView3& absorption_at_bins, const RealView2& T, const mesh::Grid& grid,
+                           const FldFields& fields);
 
 /// extinction(i, j, B) and absorption(i, j, B) at the stellar bins, for StellarIrradiation::heat.
 void fill_stellar_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
