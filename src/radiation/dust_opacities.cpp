@@ -21,19 +21,47 @@ RealView2 to_device(const std::string& name, const std::vector<double>& values, 
   return v;
 }
 
-/// out(i, j, c) = sum_s rho_s(i, j) kappa(s, c) + rho_g(i, j) kappa_gas over all cells.
-void weighted_sum(const std::string& name, const RealView2& kappa, const RealView3& rho_dust, const RealView2& rho_gas,
-                  Real kappa_gas, const RealView3& out) {
-  const int ns = static_cast<int>(kappa.extent(0)), nc = static_cast<int>(kappa.extent(1));
-  if (static_cast<int>(rho_dust.extent(2)) != ns || static_cast<int>(out.extent(2)) != nc)
+/// Bins summed side by side in one pass over the species: independent sums that
+/// neither wait on each other's additions nor read the densities once per bin.
+constexpr int kBinChunk = 8;
+
+/// out_a(i, j, c0 + c) and out_b for c < Width: the gas term, then the species in order.
+template <int Width>
+KOKKOS_INLINE_FUNCTION void weighted_chunk(int i, int j, int c0, Real gas, const RealView2& kappa_a,
+                                           const RealView2& kappa_b, const RealView3& rho_dust, const RealView3& out_a,
+                                           const RealView3& out_b) {
+  Real a[Width], b[Width];
+  for (int c = 0; c < Width; ++c) a[c] = b[c] = gas;
+  for (int s = 0; s < static_cast<int>(rho_dust.extent(2)); ++s) {
+    const Real rho = rho_dust(i, j, s);
+    for (int c = 0; c < Width; ++c) {
+      a[c] += rho * kappa_a(s, c0 + c);
+      b[c] += rho * kappa_b(s, c0 + c);
+    }
+  }
+  for (int c = 0; c < Width; ++c) {
+    out_a(i, j, c0 + c) = a[c];
+    out_b(i, j, c0 + c) = b[c];
+  }
+}
+
+/// out_a(i, j, c) = sum_s rho_s(i, j) kappa_a(s, c) + rho_g(i, j) kappa_gas over all cells, and
+/// out_b from kappa_b likewise (both tables have the same columns).
+void weighted_sums(const std::string& name, const RealView2& kappa_a, const RealView2& kappa_b,
+                   const RealView3& rho_dust, const RealView2& rho_gas, Real kappa_gas, const RealView3& out_a,
+                   const RealView3& out_b) {
+  const int ns = static_cast<int>(kappa_a.extent(0)), nc = static_cast<int>(kappa_a.extent(1));
+  if (static_cast<int>(rho_dust.extent(2)) != ns || kappa_b.extent(0) != kappa_a.extent(0) ||
+      kappa_b.extent(1) != kappa_a.extent(1) || static_cast<int>(out_a.extent(2)) != nc ||
+      static_cast<int>(out_b.extent(2)) != nc)
     throw std::invalid_argument(name + ": species or band counts differ between opacities and fields");
+  const int whole = nc - nc % kBinChunk;
   par_for(
-      name, 0, static_cast<int>(out.extent(0)), 0, static_cast<int>(out.extent(1)), KOKKOS_LAMBDA(int i, int j) {
-        for (int c = 0; c < nc; ++c) {
-          Real sum = rho_gas(i, j) * kappa_gas;
-          for (int s = 0; s < ns; ++s) sum += rho_dust(i, j, s) * kappa(s, c);
-          out(i, j, c) = sum;
-        }
+      name, 0, static_cast<int>(out_a.extent(0)), 0, static_cast<int>(out_a.extent(1)), KOKKOS_LAMBDA(int i, int j) {
+        const Real gas = rho_gas(i, j) * kappa_gas;
+        for (int c0 = 0; c0 < whole; c0 += kBinChunk)
+          weighted_chunk<kBinChunk>(i, j, c0, gas, kappa_a, kappa_b, rho_dust, out_a, out_b);
+        for (int c0 = whole; c0 < nc; ++c0) weighted_chunk<1>(i, j, c0, gas, kappa_a, kappa_b, rho_dust, out_a, out_b);
       });
 }
 
@@ -77,9 +105,8 @@ DustOpacities DustOpacities::from_table(const OpacityTable& table, const std::ve
 
 void fill_fld_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
                         Real kappa_gas, const FldFields& fields) {
-  weighted_sum("radiation::fld_absorption", opacities.planck_absorption, rho_dust, rho_gas, kappa_gas,
-               fields.absorption);
-  weighted_sum("radiation::fld_extinction", opacities.rosseland_total, rho_dust, rho_gas, kappa_gas, fields.extinction);
+  weighted_sums("radiation::fld_opacities", opacities.planck_absorption, opacities.rosseland_total, rho_dust, rho_gas,
+                kappa_gas, fields.absorption, fields.extinction);
 }
 
 void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& extinction_at_bins,
@@ -119,8 +146,8 @@ void fill_fld_opacities_at(const DustOpacities& opacities, const RealView3& exti
 
 void fill_stellar_opacities(const DustOpacities& opacities, const RealView3& rho_dust, const RealView2& rho_gas,
                             Real kappa_gas, const RealView3& extinction, const RealView3& absorption) {
-  weighted_sum("radiation::stellar_extinction", opacities.stellar_extinction, rho_dust, rho_gas, kappa_gas, extinction);
-  weighted_sum("radiation::stellar_absorption", opacities.stellar_absorption, rho_dust, rho_gas, kappa_gas, absorption);
+  weighted_sums("radiation::stellar_opacities", opacities.stellar_extinction, opacities.stellar_absorption, rho_dust,
+                rho_gas, kappa_gas, extinction, absorption);
 }
 
 }  // namespace mote::radiation
