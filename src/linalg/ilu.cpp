@@ -62,8 +62,8 @@ void IluFactors::symbolic(const CrsPattern& pattern, int estimate) {
   Kokkos::resize(L_entries_, ilu_handle_.get_spiluk_handle()->get_nnzL());
   Kokkos::resize(U_entries_, ilu_handle_.get_spiluk_handle()->get_nnzU());
   sort_rows_and_find_levels();
-  ilu_handle_.destroy_spiluk_handle();  // its work arrays: mote's numeric phase needs only the pattern
-  if (sweeps_ > 0) return;
+  ilu_handle_.destroy_spiluk_handle();     // its work arrays: mote's numeric phase needs only the pattern
+  if (sweeps_ > 0 || kPlainLoops) return;  // Serial substitutes without sptrsv
   lower_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, true);
   upper_handle_.create_sptrsv_handle(SPTRSVAlgorithm::SEQLVLSCHD_TP1, pattern.n_rows, false);
   triangular::sptrsv_symbolic(&lower_handle_, L_row_map_, L_entries_);
@@ -201,13 +201,28 @@ int IluFactors::factorise(const CrsMatrix& A) {
   return bad < static_cast<int>(U_row_map_.extent(0)) - 1 ? bad : -1;
 }
 
-void IluFactors::apply(const Vector& y, const Vector& z) {
-  if (sweeps_ > 0) return apply_sweeps(y, z);
-  triangular::sptrsv_solve(&lower_handle_, L_row_map_, L_entries_, L_values_, y, between_);
-  triangular::sptrsv_solve(&upper_handle_, U_row_map_, U_entries_, U_values_, between_, z);
-}
-
 namespace detail {
+
+/// x = T^-1 b, row after row (forward for the unit lower factor, backward for the upper), each
+/// row as Kokkos Kernels' sptrsv computes it: diff = -sum of T_rc x_c over the off-diagonal
+/// entries in column order, x_r = (b_r + diff) / T_rr. One thread: for the Serial back-end.
+template <bool Lower>
+void substitute(const IluFactors::Factor& T, const Vector& b, const Vector& x) {
+  const auto rm = T.row_map;
+  const auto e = T.entries;
+  const auto v = T.values;
+  const int n = static_cast<int>(b.extent(0));
+  Kokkos::parallel_for(
+      "linalg::ilu_substitution", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(int) {
+        for (int k = 0; k < n; ++k) {
+          const int row = Lower ? k : n - 1 - k;
+          const Offset first = rm(row) + (Lower ? 0 : 1), last = rm(row + 1) - (Lower ? 1 : 0);
+          Real diff = 0;
+          for (Offset p = first; p < last; ++p) diff -= v(p) * x(e(p));
+          x(row) = (b(row) + diff) / v(Lower ? last : rm(row));
+        }
+      });
+}
 
 /// w_out = y - (L - I) w_in: one Jacobi sweep of the unit lower factor (diagonal last in each row).
 void lower_sweep(const IluFactors::Factor& L, const Vector& y, const Vector& w_in, const Vector& w_out) {
@@ -239,6 +254,17 @@ void upper_sweep(const IluFactors::Factor& U, const Vector& w, const Vector& z_i
 }
 
 }  // namespace detail
+
+void IluFactors::apply(const Vector& y, const Vector& z) {
+  if (sweeps_ > 0) return apply_sweeps(y, z);
+  if constexpr (kPlainLoops) {
+    detail::substitute<true>(lower(), y, between_);
+    detail::substitute<false>(upper(), between_, z);
+  } else {
+    triangular::sptrsv_solve(&lower_handle_, L_row_map_, L_entries_, L_values_, y, between_);
+    triangular::sptrsv_solve(&upper_handle_, U_row_map_, U_entries_, U_values_, between_, z);
+  }
+}
 
 void IluFactors::apply_sweeps(const Vector& y, const Vector& z) {
   // Iterates alternate between two vectors so that the last one lands in `between_` (L) and in `z` (U).

@@ -8,7 +8,9 @@
 // (rows) indices, 4.8 GB for RBO24's 150 x 240 x 20 FLD system in Kokkos
 // Kernels 3.4. The factors are applied as z = U^-1 L^-1 y with two sptrsv
 // triangular solves, level-scheduled (one kernel per level: on a GPU the
-// launches of a few hundred levels per solve dominate), or with m Jacobi
+// launches of a few hundred levels per solve dominate; the Serial back-end
+// substitutes row after row instead, with sptrsv's arithmetic in each row,
+// so the same bits without the levels' scattered accesses), or with m Jacobi
 // sweeps per factor (Chow & Patel 2015; Anzt, Chow & Dongarra 2015): w = y,
 // then m times w <- y - (L - I) w, and z = D^-1 w, then m times
 // z <- D^-1 (w - (U - D) z): 2m + 1 row-parallel kernels, the truncated
