@@ -33,6 +33,10 @@ class SignalGuard {
     struct sigaction action {};
     action.sa_handler = mote_on_stop_signal;
     sigemptyset(&action.sa_mask);
+    // Interrupted system calls resume: a signal that comes while the log's write
+    // to a full pipe blocks would otherwise fail it (EINTR), and std::cout would
+    // drop every later line, the checkpoint's and the summary's among them.
+    action.sa_flags = SA_RESTART;
     sigaction(SIGINT, &action, &old_int_);
     sigaction(SIGTERM, &action, &old_term_);
   }
