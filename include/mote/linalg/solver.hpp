@@ -1,5 +1,5 @@
 // Sparse linear solves A x = b on the device: Jacobi (row) scaling, an ILU(k)
-// preconditioner (Kokkos Kernels spiluk, applied with sptrsv) and BiCGStab
+// preconditioner (Kokkos Kernels spiluk, applied as in ilu.hpp) and BiCGStab
 // (van der Vorst 1992, right-preconditioned) written on KokkosSparse::spmv
 // and KokkosBlas dot products. The solver of the FLD system in RBO24 sec. 4.1
 // (eq. 48-49: "incomplete-LU preconditioning and BiCGStab").
