@@ -1,7 +1,10 @@
 // MPI + Kokkos initialisation guard (see include/mote/core/runtime.hpp).
 #include "mote/core/runtime.hpp"
 
+#include <pthread.h>
+
 #include <Kokkos_Core.hpp>
+#include <csignal>
 #include <fstream>
 #if defined(KOKKOS_ENABLE_CUDA)
 #include <cuda_runtime.h>
@@ -12,11 +15,20 @@
 namespace mote::core {
 
 Runtime::Runtime(int& argc, char**& argv) {
+  // The threads MPI and Kokkos start (OpenMP workers, progress threads) block SIGINT and
+  // SIGTERM, so that those come to this thread: one blocked in a write of the log
+  // returns from it (EINTR) and reaches the run loop's signal check (run_loop.cpp).
+  sigset_t stop, before;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop, &before);
 #ifdef MOTE_HAVE_MPI
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
 #endif
   Kokkos::initialize(argc, argv);
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
   comm_ = Comm::world();
 }
 

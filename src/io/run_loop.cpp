@@ -25,7 +25,14 @@ volatile std::sig_atomic_t g_stop_signal = 0;
 
 extern "C" void mote_on_stop_signal(int sig) { g_stop_signal = sig; }
 
-/// Installs SIGINT/SIGTERM handlers for the lifetime of a run and restores the previous ones.
+/// Installs SIGINT/SIGTERM handlers for the lifetime of a run and restores the previous ones;
+/// SIGPIPE is ignored meanwhile.
+///  - No SA_RESTART: a stop signal that comes while the log's write blocks on a full pipe
+///    whose reader has stopped (a paused pager, Ctrl-S) fails that write (EINTR), so the
+///    loop reaches the signal and writes its checkpoint; logging clears the stream's error
+///    state, so one line is lost at most (logging::info_line).
+///  - SIGPIPE ignored: a reader that died (a `| tee` killed with the job) makes the log's
+///    writes fail (EPIPE) instead of killing the run before its checkpoint.
 class SignalGuard {
  public:
   SignalGuard() {
@@ -33,21 +40,22 @@ class SignalGuard {
     struct sigaction action {};
     action.sa_handler = mote_on_stop_signal;
     sigemptyset(&action.sa_mask);
-    // Interrupted system calls resume: a signal that comes while the log's write
-    // to a full pipe blocks would otherwise fail it (EINTR), and std::cout would
-    // drop every later line, the checkpoint's and the summary's among them.
-    action.sa_flags = SA_RESTART;
     sigaction(SIGINT, &action, &old_int_);
     sigaction(SIGTERM, &action, &old_term_);
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGPIPE, &ignore, &old_pipe_);
   }
   ~SignalGuard() {
     sigaction(SIGINT, &old_int_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGPIPE, &old_pipe_, nullptr);
   }
 
  private:
   struct sigaction old_int_ {
-  }, old_term_{};
+  }, old_term_{}, old_pipe_{};
 };
 
 /// run.dt_min = 0 stands for this fraction of run.t_end: a run that needs more
@@ -515,10 +523,11 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
-      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
-                    "; writing a checkpoint and stopping");
+      // The checkpoint before any log line: a log write that blocks cannot cost it.
       if (report_non_finite(sim, s)) return core::kExitNonFinite;
       write_checkpoint(sim, s);
+      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
+                    "; stopped after writing the checkpoint above");
       log_work_summary(sim);
       return core::kExitInterrupted;
     }
