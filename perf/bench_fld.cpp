@@ -173,7 +173,7 @@ void BM_FldIlu(benchmark::State& bench) {
   bench.counters["numeric_s"] = numeric / calls;
 }
 
-/// (n, bands, ILU fill level, triangular sweeps: 0 exact level-scheduled solves)
+/// (n, bands, ILU fill level, triangular sweeps: 0 exact triangular solves)
 void sizes(benchmark::internal::Benchmark* b) {
   for (int nb : {5, 10, 20}) b->Args({32, nb, 0, 0});
   b->Args({32, 5, 1, 0});

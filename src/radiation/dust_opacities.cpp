@@ -53,7 +53,7 @@ void weighted_sums(const std::string& name, const RealView2& kappa_a, const Real
   const int ns = static_cast<int>(kappa_a.extent(0)), nc = static_cast<int>(kappa_a.extent(1));
   if (static_cast<int>(rho_dust.extent(2)) != ns || kappa_b.extent(0) != kappa_a.extent(0) ||
       kappa_b.extent(1) != kappa_a.extent(1) || static_cast<int>(out_a.extent(2)) != nc ||
-      static_cast<int>(out_b.extent(2)) != nc)
+      out_b.extent(0) != out_a.extent(0) || out_b.extent(1) != out_a.extent(1) || out_b.extent(2) != out_a.extent(2))
     throw std::invalid_argument(name + ": species or band counts differ between opacities and fields");
   const int whole = nc - nc % kBinChunk;
   par_for(

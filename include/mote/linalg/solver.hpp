@@ -74,7 +74,7 @@ struct SolverSettings {
   Preconditioning preconditioning{0};
   bool fallback = true;
   int max_fill_level = 2;
-  /// ILU factors applied by exact level-scheduled triangular solves (0) or by
+  /// ILU factors applied by exact triangular solves (0; ilu.hpp) or by
   /// this many Jacobi sweeps per factor (ilu.hpp: fewer kernel launches on a GPU).
   int triangular_sweeps = 0;
   /// Rows whose terms are below this fraction of the largest row's are
