@@ -175,6 +175,58 @@ linalg::CrsPattern fld_pattern(const CellMap& map) {
       map.owned_rows() + (map.slab_inner ? map.nt * map.nb : 0) + (map.slab_outer ? map.nt * map.nb : 0));
 }
 
+/// Where, within an E^b row, the assembly adds (the same positions for every band b:
+/// the row's columns, B of its cell and E^b of the cells around it, sort alike for
+/// each b). kBSlot: B of the cell. A neighbour slot: E^b of the cell (i + di, j + dj)
+/// resolved through the boundaries, or -1 where an open side gives the external field.
+constexpr int kBSlot = 9, kBandSlots = 10;
+KOKKOS_INLINE_FUNCTION int neighbour_slot(int di, int dj) { return (di + 1) * 3 + (dj + 1); }
+
+/// The position of col in row, -1 if the pattern lacks it.
+KOKKOS_INLINE_FUNCTION int position_in_row(const linalg::CrsMatrix::row_map_type& row_map,
+                                           const linalg::CrsMatrix::index_type& entries, int row, int col) {
+  for (auto k = row_map(row); k < row_map(row + 1); ++k)
+    if (entries(k) == col) return static_cast<int>(k - row_map(row));
+  return -1;
+}
+
+/// The column of slot q of cell (i, j) in band b, -1 for the external field.
+KOKKOS_INLINE_FUNCTION int slot_column(const CellMap& map, int i, int j, int b, int q) {
+  if (q == kBSlot) return map.row_B(map.cell(i, j));
+  int a = i + q / 3 - 1, d = j + q % 3 - 1;
+  return map.source(a, d) ? map.column_E(a, d, b) : -1;
+}
+
+/// The slot table (cells, kBandSlots), set up once with the pattern (found in the
+/// rows of band 0 and checked in every band's): assemble_band adds into a row's
+/// entries without searching it.
+View<int**> band_slot_table(const CellMap& map, const linalg::CrsMatrix& A) {
+  const int cells = map.nr * map.nt;
+  View<int**> slots("radiation::fld_band_slots", cells, kBandSlots);
+  const auto row_map = A.graph.row_map;
+  const auto entries = A.graph.entries;
+  int mismatches = 0;
+  par_reduce(
+      "radiation::fld_band_slots", 0, cells,
+      KOKKOS_LAMBDA(int c, int& bad) {
+        const int i = map.i_of(c), j = map.j_of(c);
+        for (int q = 0; q < kBandSlots; ++q) {
+          const int col = slot_column(map, i, j, 0, q);
+          slots(c, q) = col < 0 ? -1 : position_in_row(row_map, entries, map.row_E(c, 0), col);
+          if (col >= 0 && slots(c, q) < 0) ++bad;
+          for (int b = 1; b < map.nb && col >= 0; ++b) {
+            const int row = map.row_E(c, b);
+            if (entries(row_map(row) + slots(c, q)) != slot_column(map, i, j, b, q)) ++bad;
+          }
+        }
+      },
+      mismatches);
+  if (mismatches > 0)
+    throw std::logic_error("radiation: " + std::to_string(mismatches) +
+                           " FLD matrix slots differ between bands (a pattern this assembly cannot use)");
+  return slots;
+}
+
 }  // namespace
 
 FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationConstants constants)
@@ -205,6 +257,7 @@ FldSolver::FldSolver(const mesh::Grid& grid, FldSettings settings, RadiationCons
   const CellMap map = cell_map(grid, nb_, settings_.boundaries);
   solver_ = std::make_unique<linalg::LinearSolver>("radiation::fld", fld_pattern(map), settings_.solver,
                                                    fld_distribution(grid, map));
+  band_slots_ = band_slot_table(map, solver_->matrix());
   T_previous_ = RealView2("radiation::T_previous", grid.nr_total(), grid.nt_total());
   rhs_ = linalg::Vector("radiation::rhs", solver_->pattern().n_rows);
   x_ = linalg::Vector("radiation::x", solver_->pattern().n_rows);
@@ -293,25 +346,13 @@ void compute_diffusion_coefficient(const mesh::Grid& grid, const CellMap& map, i
   halo.exchange(D);
 }
 
-/// Adds v to the entry (row, col), which the pattern holds.
-KOKKOS_INLINE_FUNCTION void add_entry(const linalg::CrsMatrix::row_map_type& row_map,
-                                      const linalg::CrsMatrix::index_type& entries,
-                                      const linalg::CrsMatrix::values_type& values, int row, int col, Real v) {
-  for (auto k = row_map(row); k < row_map(row + 1); ++k)
-    if (entries(k) == col) {
-      values(k) += v;
-      return;
-    }
-}
-
 /// The E^b rows of eq. 49 (times V): exchange with B, storage, and the net
 /// outflow through the four faces, sum_faces (flux x area), from the Wu
 /// coefficients; reflecting faces carry no flux, open ghosts go to the rhs.
-void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_dt, Real c,
+void assemble_band(const mesh::Grid& grid, const CellMap& map, const View<int**>& slots, int b, Real inv_dt, Real c,
                    const mesh::DiffusionCoefficients& coef, const FldFields& fields, const RealView3& E,
                    const RealView3& f, const RealView1& E_ext, const linalg::CrsMatrix& A, const linalg::Vector& rhs) {
   const auto row_map = A.graph.row_map;
-  const auto entries = A.graph.entries;
   const auto values = A.values;
   const auto V = grid.V;
   const auto k_abs = fields.absorption, S_sca = fields.scattering_source;
@@ -320,16 +361,17 @@ void assemble_band(const mesh::Grid& grid, const CellMap& map, int b, Real inv_d
       "radiation::fld_assemble_band", grid.i_begin(), grid.i_end(), grid.j_begin(), grid.j_end(),
       KOKKOS_LAMBDA(int i, int j) {
         const int cell = map.cell(i, j), row = map.row_E(cell, b);
+        const auto first = row_map(row);
         const Real vol = V(i, j), k = k_abs(i, j, b);
-        add_entry(row_map, entries, values, row, map.row_B(cell), -vol * k * f(i, j, b));
-        add_entry(row_map, entries, values, row, row, vol * (inv_dt + c * k) / c);
+        values(first + slots(cell, kBSlot)) += -vol * k * f(i, j, b);
+        values(first + slots(cell, neighbour_slot(0, 0))) += vol * (inv_dt + c * k) / c;
         Real r = vol * (inv_dt * E(i, j, b) + S_sca(i, j, b));
         // sign * (coefficient of the cell (ci, cj)) for every cell of a face flux.
         const auto face = [&](Real sign, const Real* cf, const int* ci, const int* cj) {
           for (int q = 0; q < 4; ++q) {
-            int a = ci[q], d = cj[q];
-            if (map.source(a, d))
-              add_entry(row_map, entries, values, row, map.column_E(a, d, b), sign * cf[q] / c);
+            const int slot = slots(cell, neighbour_slot(ci[q] - i, cj[q] - j));
+            if (slot >= 0)
+              values(first + slot) += sign * cf[q] / c;
             else
               r -= sign * cf[q] * E_ext(b);
           }
@@ -435,7 +477,8 @@ void FldSolver::assemble(double inv_dt, const FldFields& fields, const FldState&
   const auto& A = solver_->matrix();
   Kokkos::deep_copy(A.values, 0.0);
   for (int b = 0; b < nb_; ++b)
-    assemble_band(grid_, map, b, inv_dt, constants_.c, coef_[b], fields, state.E, planck_, E_ext_, A, rhs_);
+    assemble_band(grid_, map, band_slots_, b, inv_dt, constants_.c, coef_[b], fields, state.E, planck_, E_ext_, A,
+                  rhs_);
   assemble_temperature(grid_, map, inv_dt, constants_.sigma, fields, state.T, planck_, A, rhs_);
 }
 
@@ -502,6 +545,7 @@ linalg::SolveReport FldSolver::step(double dt, const FldFields& fields, FldState
   };
   auto report = solver_->solve(rhs_, x_, describe);
   write_back(state);
+  halo_.exchange(state.E);  // E^{n+1} of the neighbouring slabs, as open_boundary_luminosity reads it
   return report;
 }
 

@@ -181,6 +181,7 @@ class FldSolver {
   std::vector<RealView2> D_;  // c lambda / rho kappa_R per band (with ghosts)
   std::vector<mesh::DiffusionCoefficients> coef_;
   std::unique_ptr<linalg::LinearSolver> solver_;
+  View<int**> band_slots_;  // where the E^b rows' terms go in each row (set up with the pattern)
   linalg::Vector rhs_, x_;
   RealView2 T_previous_;
 };
