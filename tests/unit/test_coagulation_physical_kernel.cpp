@@ -145,6 +145,25 @@ TEST(CoagulationPhysicalKernel, VolumeKernelMatchesHandEvaluation) {
   EXPECT_EQ(got[0].K, got[1].K);
 }
 
+// K_ij = K_ji bit for bit for every pair of the grid, in both the volume and the
+// vertically integrated forms (the drift and settling estimates included).
+TEST(CoagulationPhysicalKernel, KernelIsSymmetricBitForBit) {
+  const auto grid = coag::MassGrid::from_sizes(1e-5, 1.0, 51, kRhoM);
+  std::vector<std::pair<int, int>> pairs, swapped;
+  for (int i = 0; i < grid.size(); ++i)
+    for (int j = 0; j < i; ++j) {
+      pairs.emplace_back(i, j);
+      swapped.emplace_back(j, i);
+    }
+  for (const bool integrated : {false, true}) {
+    const auto kernel = physical_kernel(grid, gas_cells(kOther, kCell, true), integrated);
+    const auto ij = evaluate(kernel, 1, pairs), ji = evaluate(kernel, 1, swapped);
+    int asymmetric = 0;
+    for (size_t p = 0; p < pairs.size(); ++p) asymmetric += ij[p].K != ji[p].K || ij[p].p_frag != ji[p].p_frag;
+    EXPECT_EQ(asymmetric, 0) << "of " << pairs.size() << " pairs (vertically integrated: " << integrated << ")";
+  }
+}
+
 TEST(CoagulationPhysicalKernel, VolumeKernelUsesDynamicsVelocities) {
   const auto grid = coag::MassGrid::from_sizes(1e-5, 1.0, 51, kRhoM);
   auto gas = gas_cells(kOther, kCell, true);

@@ -8,19 +8,20 @@
 // replaced by a quadratic fit (RBO24 sec. 5: St*/St = 1 - b + sqrt(b^2 +
 // a (1 - St)/(1 + St)) for St < 1, which is 1.6 at St -> 0 (OC07's y*) and 1 at
 // St = 1; accurate to 2 %), limited below by the Kolmogorov scale Re^-1/2.
-// The Epstein Stokes number is kept here until the shared `dust` module
-// provides it (St = rho_m a / (rho_g v_th) Omega, mid-plane version
-// St = pi rho_m a / (2 Sigma_g) for the vertically integrated kernel).
+// The Epstein Stokes number is the `dust` module's (St = rho_m a / (rho_g v_th)
+// Omega); its mid-plane version St = pi rho_m a / (2 Sigma_g), for the
+// vertically integrated kernel, is here.
 #pragma once
 
 #include "mote/core/kokkos_types.hpp"
+#include "mote/dust/stopping_time.hpp"
 
 namespace mote::coagulation {
 
 /// Epstein Stokes number in gas of volume density rho_g, sound speed c_s:
 /// t_s = rho_m a / (rho_g v_th), v_th = sqrt(8/pi) c_s; St = t_s Omega.
 KOKKOS_INLINE_FUNCTION Real stokes_epstein(Real a, Real rho_m, Real rho_g, Real c_s, Real omega) {
-  return rho_m * a / (rho_g * math::sqrt(8.0 / math::pi()) * c_s) * omega;
+  return dust::stokes_number(dust::epstein_stopping_time(rho_m, a, rho_g, c_s), omega);
 }
 
 /// Mid-plane Epstein Stokes number from the gas surface density (Birnstiel et al. 2010):
@@ -31,7 +32,7 @@ KOKKOS_INLINE_FUNCTION Real stokes_epstein_midplane(Real a, Real rho_m, Real sig
 
 /// Squared Brownian relative speed (RBO24 eq. 58); kT in erg (or code energy).
 KOKKOS_INLINE_FUNCTION Real brownian_dv2(Real m_i, Real m_j, Real kT) {
-  return 8.0 * kT * (m_i + m_j) / (math::pi() * m_i * m_j);
+  return 8.0 * kT * (m_i + m_j) / (math::pi() * (m_i * m_j));  // symmetric in (i, j) bit for bit
 }
 
 /// Quadratic fit of the class I/II boundary St* (OC07 eq. 21d) for a grain of
@@ -70,7 +71,7 @@ KOKKOS_INLINE_FUNCTION Real turbulent_vrel2(const TurbulentSpeciesTerms& g1, con
   // Class II (fast eddies, t_eta < t < t*): OC07 eq. 18.
   const Real d1 = (sts - re_inv_sqrt) + st1 * st1 / (st1 + sts) - g1.fast_eddy;
   const Real d2 = (sts - re_inv_sqrt) + st2 * st2 / (st2 + sts) - g2.fast_eddy;
-  return math::max(v_i + d1 + d2, Real(0));
+  return math::max(v_i + (d1 + d2), Real(0));  // d1 + d2 first: the same bits for (g1, g2) and (g2, g1)
 }
 
 /// V_rel^2 for Stokes numbers st1, st2 (the two-grain form of the above).
@@ -87,9 +88,10 @@ KOKKOS_INLINE_FUNCTION Real dust_scale_height(Real H, Real st, Real alpha) { ret
 /// z = the dust scale height for the vertically integrated kernel).
 KOKKOS_INLINE_FUNCTION Real settling_speed(Real z, Real st, Real omega) { return omega * z * math::min(st, Real(0.5)); }
 
-/// Radial and azimuthal drift speeds relative to the gas for a head-wind
-/// speed v_hw = eta v_K (Nakagawa et al. 1986 without dust feedback):
-/// v_R = -2 St v_hw / (1 + St^2), v_phi = -v_hw / (1 + St^2).
+/// Radial and azimuthal drift speeds for a head-wind speed v_hw = eta v_K
+/// (Nakagawa et al. 1986 without dust feedback): v_R = -2 St v_hw / (1 + St^2)
+/// relative to the gas (at rest in R), v_phi = -v_hw / (1 + St^2) relative to
+/// the Keplerian speed (the kernel takes only differences between grains).
 KOKKOS_INLINE_FUNCTION Real radial_drift(Real st, Real v_hw) { return -2.0 * st * v_hw / (1.0 + st * st); }
 KOKKOS_INLINE_FUNCTION Real azimuthal_drift(Real st, Real v_hw) { return -v_hw / (1.0 + st * st); }
 
