@@ -75,7 +75,8 @@ KOKKOS_INLINE_FUNCTION void mirror_ghost(const W& w, int i, int j, int s, Real s
 }
 
 /// Per-cell reconstruction geometry along one direction from cell centres xc and
-/// edges xe: inv_dp, inv_dm, c_F, c_B (RBO24 sec. 3.1, eq. 9-10). A free function:
+/// edges xe: inv_dp, inv_dm, c_F, c_B (Mignone 2014, as RBO24 sec. 3.1 uses it), with
+/// the grid's centres (midpoints, mesh/grid.hpp) for Mignone's centroids. A free function:
 /// nvcc does not allow extended lambdas in constructors.
 RealView2 slope_geometry(const std::string& name, const RealView1& xc, const RealView1& xe) {
   const int n = static_cast<int>(xc.extent(0));

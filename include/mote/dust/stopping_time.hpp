@@ -1,6 +1,7 @@
 // Gas-dust drag laws shared by the SPH and grid engines.
 //   Epstein stopping time t_s = rho_m s / (rho_g v_th), v_th = sqrt(8/pi) c_s
-//   (RBO24 eq. 14; PL15 eq. 58 and HPL18 eq. 19 write the same law);
+//   (RBO24 eq. 14; PL15 eq. 19-20 and HPL18 eq. 12-13 write the same law with
+//   the adiabatic sound speed, v_th = sqrt(8 / (pi gamma)) c_s);
 //   Stokes number St = t_s Omega_K.
 #pragma once
 
