@@ -195,23 +195,29 @@ std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
 }
 
 std::optional<io::NonFinite> DiscSimulation::find_non_finite() const {
+  // The dust's Q first, then the gas fields in their order: one reduction over
+  // field * cells + cell, one host synchronisation per check.
   auto Q = dust_->Q;
+  const GasFields g = gas_->fields();
   const int ib = grid_->i_begin(), jb = grid_->j_begin(), nt = grid_->nt, ns = dust_->species();
+  const int cells = grid_->nr * grid_->nt;
   int first = INT_MAX;
   par_reduce(
-      "disc::dust_non_finite", ib, grid_->i_end(), jb, grid_->j_end(),
+      "disc::non_finite", ib, grid_->i_end(), jb, grid_->j_end(),
       KOKKOS_LAMBDA(int i, int j, int& f) {
+        bool dust_ok = true;
         for (int s = 0; s < ns; ++s)
-          for (int k = 0; k < kDustVars; ++k)
-            if (!math::isfinite(Q(i, j, s, k))) f = math::min(f, (i - ib) * nt + (j - jb));
+          for (int k = 0; k < kDustVars; ++k) dust_ok = dust_ok && math::isfinite(Q(i, j, s, k));
+        const int field = dust_ok ? 1 + first_failing_gas_field(g, i, j) : 0;
+        if (field != 1 + kGasCheckFields) f = math::min(f, field * cells + (i - ib) * nt + (j - jb));
       },
       Kokkos::Min<int>(first));
-  if (first != INT_MAX) {
-    const int i = first / nt, j = first % nt;
-    return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
-                                                   grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
-  }
-  return gas_->find_non_finite();
+  if (first == INT_MAX) return std::nullopt;
+  const int field = first / cells, cell = first % cells;
+  if (field > 0) return gas_->describe_non_finite(field - 1, cell);
+  const int i = cell / nt, j = cell % nt;
+  return io::NonFinite{"dust Q", logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_->i_offset, j,
+                                                 grid_->Rc_h(i + ib), grid_->tc_h(j + jb))};
 }
 
 }  // namespace mote::disc

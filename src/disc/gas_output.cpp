@@ -66,36 +66,28 @@ void GasDisc::load_state(const io::H5File& file, const std::string& group) {
 }
 
 std::optional<io::NonFinite> GasDisc::find_non_finite() const {
-  const int ib = grid_.i_begin(), ie = grid_.i_end(), jb = grid_.j_begin(), je = grid_.j_end(), nt = grid_.nt;
-  auto Sigma = gas_.Sigma;
-  int first = INT_MAX;
+  const int ib = grid_.i_begin(), jb = grid_.j_begin(), nt = grid_.nt, cells = grid_.nr * grid_.nt;
+  const GasFields g = gas_;
+  int first = INT_MAX;  // field * cells + cell
   par_reduce(
-      "disc::gas_non_finite_sigma", ib, ie,
-      KOKKOS_LAMBDA(int i, int& f) {
-        if (!math::isfinite(Sigma(i)) || Sigma(i) < 0) f = math::min(f, i - ib);
+      "disc::gas_non_finite", ib, grid_.i_end(), jb, grid_.j_end(),
+      KOKKOS_LAMBDA(int i, int j, int& f) {
+        const int field = first_failing_gas_field(g, i, j);
+        if (field != kGasCheckFields) f = math::min(f, field * cells + (i - ib) * nt + (j - jb));
       },
       Kokkos::Min<int>(first));
-  if (first != INT_MAX)
-    return io::NonFinite{"gas_Sigma",
-                         logging::format("radial cell %d, R = %g", first + grid_.i_offset, grid_.Rc_h(first + ib))};
-  const RealView2 fields[] = {gas_.rho, gas_.vR, gas_.vphi};
+  if (first == INT_MAX) return std::nullopt;
+  return describe_non_finite(first / cells, first % cells);
+}
+
+io::NonFinite GasDisc::describe_non_finite(int field, int cell) const {
+  const int i = cell / grid_.nt, j = cell % grid_.nt;
+  if (field == kCheckSigma)
+    return {"gas_Sigma",
+            logging::format("radial cell %d, R = %g", i + grid_.i_offset, grid_.Rc_h(i + grid_.i_begin()))};
   const char* names[] = {"gas_rho", "gas_vR", "gas_vphi"};
-  for (int k = 0; k < 3; ++k) {
-    auto v = fields[k];
-    first = INT_MAX;
-    par_reduce(
-        "disc::gas_non_finite", ib, ie, jb, je,
-        KOKKOS_LAMBDA(int i, int j, int& f) {
-          if (!math::isfinite(v(i, j))) f = math::min(f, (i - ib) * nt + (j - jb));
-        },
-        Kokkos::Min<int>(first));
-    if (first != INT_MAX) {
-      const int i = first / nt, j = first % nt;
-      return io::NonFinite{names[k], logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset,
-                                                     j, grid_.Rc_h(i + ib), grid_.tc_h(j + jb))};
-    }
-  }
-  return std::nullopt;
+  return {names[field - kCheckRho], logging::format("cell (i, j) = (%d, %d), R = %g, theta = %g", i + grid_.i_offset, j,
+                                                    grid_.Rc_h(i + grid_.i_begin()), grid_.tc_h(j + grid_.j_begin()))};
 }
 
 }  // namespace mote::disc

@@ -47,6 +47,69 @@ TEST(DiscDriver, ClosedBoxConservesDustPerSpeciesAndGas) {
   EXPECT_EQ(sim.driver().calls(0), 300);  // the gas, every step
 }
 
+/// Sets element `at` of a View to v on the device.
+template <class V, class... I>
+void set_element(const V& view, double v, I... at) {
+  Kokkos::deep_copy(Kokkos::subview(view, at...), v);
+}
+
+/// Counts the parallel reductions between construction and destruction (each one a
+/// host synchronisation on a GPU) through the Kokkos Tools callback.
+class ReductionCounter {
+ public:
+  ReductionCounter() {
+    count() = 0;
+    Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(&on_reduce);
+  }
+  ~ReductionCounter() { Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(nullptr); }
+  ReductionCounter(const ReductionCounter&) = delete;
+  ReductionCounter& operator=(const ReductionCounter&) = delete;
+  int reductions() const { return count(); }
+
+ private:
+  static int& count() {
+    static int n = 0;
+    return n;
+  }
+  static void on_reduce(const char*, uint32_t, uint64_t* id) { *id = static_cast<uint64_t>(++count()); }
+};
+
+// The non-finite check (run.nan_check_every) names the first failing field, the
+// dust's Q before the gas's Sigma, rho, v_R and v_phi, at the first active cell
+// (i-major) where it fails, and checks the whole state in one reduction.
+TEST(DiscDriver, NonFiniteCheckNamesTheFirstFieldAndCellInOneReduction) {
+  const auto deck = make_deck({"dust.sizes=[1e-3, 1e-2]"});
+  const auto units = units::unit_system_by_name("au_msun");
+  disc::DiscSimulation sim(deck, core::Comm::world(), units, disc::DiscSimulation::well_mixed({0.01, 0.01}, 1e-40));
+  const auto& grid = sim.grid();
+  const int ib = grid.i_begin(), jb = grid.j_begin();
+  {
+    ReductionCounter counter;
+    EXPECT_FALSE(sim.find_non_finite().has_value());
+    EXPECT_EQ(counter.reductions(), 1);
+  }
+  const auto& gas = sim.gas().fields();
+  const auto report = [&] {
+    const auto bad = sim.find_non_finite();
+    return bad ? bad->field + " at " + bad->location : std::string("none");
+  };
+  set_element(gas.vphi, NAN, ib + 1, jb + 2);
+  EXPECT_EQ(report().rfind("gas_vphi at cell (i, j) = (1, 2),", 0), 0u) << report();
+  set_element(gas.vR, INFINITY, ib + 3, jb);
+  EXPECT_EQ(report().rfind("gas_vR at cell (i, j) = (3, 0),", 0), 0u) << report();  // an earlier field, a later cell
+  set_element(gas.rho, NAN, ib + 1, jb + 2);
+  EXPECT_EQ(report().rfind("gas_rho at cell (i, j) = (1, 2),", 0), 0u) << report();
+  set_element(gas.Sigma, -1.0, ib + 2);
+  EXPECT_EQ(report().rfind("gas_Sigma at radial cell 2,", 0), 0u) << report();
+  set_element(sim.dust().Q, NAN, ib + 4, jb + 1, 1, int(disc::kMomZ));
+  EXPECT_EQ(report().rfind("dust Q at cell (i, j) = (4, 1),", 0), 0u) << report();
+  set_element(sim.dust().Q, INFINITY, ib + 4, jb, 0, int(disc::kRho));
+  EXPECT_EQ(report().rfind("dust Q at cell (i, j) = (4, 0),", 0), 0u) << report();
+  ReductionCounter counter;
+  EXPECT_TRUE(sim.find_non_finite().has_value());
+  EXPECT_EQ(counter.reductions(), 1);
+}
+
 TEST(DiscDriver, SchedulesCallSubSolversWhenDue) {
   const auto deck = make_deck({"driver.evolve_gas=false", "dust.sizes=[1e-3]"});
   const auto units = units::unit_system_by_name("au_msun");

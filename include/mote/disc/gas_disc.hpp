@@ -76,7 +76,12 @@ class GasDisc {
   /// the mesh, which the caller describes first (mesh::describe_grid); /data arrays
   /// gas_Sigma, gas_nu_mid (nr).
   void write_snapshot(io::SnapshotWriter& out) const;
+  /// The first active cell (i-major) with a field that fails first_failing_gas_field,
+  /// in field order: one reduction.
   std::optional<io::NonFinite> find_non_finite() const;
+  /// The report of gas field `field` (GasCheckField) failing at active cell `cell`
+  /// ((i - i_begin) nt + j - j_begin).
+  io::NonFinite describe_non_finite(int field, int cell) const;
 
   /// Ghost cells of Sigma from the boundary conditions at `time`. Public only
   /// because nvcc's extended lambdas may not live in private member functions.

@@ -43,4 +43,18 @@ struct GasFields {
         vZ("gas::vZ", nr_total, nt_total) {}
 };
 
+/// The fields of a gas state that the non-finite check (run.nan_check_every) reads,
+/// in the order it reports them: Sigma (also when negative), rho, v_R, v_phi.
+enum GasCheckField : int { kCheckSigma = 0, kCheckRho, kCheckVR, kCheckVphi, kGasCheckFields };
+
+/// The first field of cell (i, j) that fails the check, kGasCheckFields if none: every
+/// field in one pass, so that a check of the whole state is one reduction.
+KOKKOS_INLINE_FUNCTION int first_failing_gas_field(const GasFields& g, int i, int j) {
+  if (!math::isfinite(g.Sigma(i)) || g.Sigma(i) < 0) return kCheckSigma;
+  if (!math::isfinite(g.rho(i, j))) return kCheckRho;
+  if (!math::isfinite(g.vR(i, j))) return kCheckVR;
+  if (!math::isfinite(g.vphi(i, j))) return kCheckVphi;
+  return kGasCheckFields;
+}
+
 }  // namespace mote::disc
