@@ -20,6 +20,7 @@ import struct
 import subprocess
 import sys
 import termios
+import threading
 import time
 
 import h5py
@@ -38,14 +39,23 @@ def pending_bytes(fd):
     return struct.unpack("i", fcntl.ioctl(fd, termios.FIONREAD, b"\0\0\0\0"))[0]
 
 
-def start(out, stderr):
+def start(out, stderr, timeout=120.0):
     args = [exe, deck, "grid.nx=128", "grid.ny=128", "run.t_end=1000", "run.progress_interval=0", f"output.dir={out}"]
     proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=stderr, text=True, env=dict(os.environ, **MPI_ENV))
+    watchdog = threading.Timer(timeout, proc.kill)  # a run that hangs before stepping ends the read below
+    watchdog.start()
     steps = 0
-    for line in proc.stdout:  # until the run is stepping
-        steps += line.startswith("step")
-        if steps >= 20:
-            break
+    try:
+        for line in proc.stdout:  # until the run is stepping
+            steps += line.startswith("step")
+            if steps >= 20:
+                break
+    finally:
+        watchdog.cancel()
+    if steps < 20:
+        proc.kill()
+        checks.check(False, f"the run printed {steps} of 20 step lines within {timeout:.0f} s")
+        sys.exit(checks.finish())
     return proc
 
 
