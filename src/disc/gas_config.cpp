@@ -18,6 +18,17 @@ void check_viscosity(const core::Deck& d, core::DeckCheck& check) {
     check.fail("gas.nu0", "or gas.alpha must be > 0 with " + check.quote("gas.viscosity"));
 }
 
+/// The hydrostatic column holds Sigma (a grid across the mid-plane) or Sigma / 2 (a
+/// grid from the mid-plane up or down, mirror symmetry): a grid whose theta range
+/// neither contains nor ends at the mid-plane has no column to normalise.
+void check_column(const core::Deck& d, core::DeckCheck& check) {
+  const double t0 = d.real("grid.theta_min"), t1 = d.real("grid.theta_max");
+  if (t0 > 0.0)
+    check.fail("grid.theta_min", "must be <= 0 with the gas disc: its hydrostatic column starts at the mid-plane");
+  if (t1 < 0.0)
+    check.fail("grid.theta_max", "must be >= 0 with the gas disc: its hydrostatic column ends at the mid-plane");
+}
+
 }  // namespace
 
 GasBoundary gas_boundary(const std::string& name) {
@@ -51,7 +62,7 @@ void GasConfig::declare(core::DeckSchema& s) {
       .default_value(100.0)
       .greater_than(0.0)
       .unit("K")
-      .doc("Temperature at R_ref (RBO24 default: 100 K at 1 au).");
+      .doc("Temperature at R_ref (RBO24's 100 K at 1 au: R_ref = 1 in au_msun units).");
   s.real("gas.T_index").default_value(0.5).doc("T proportional to (R / R_ref)^-T_index (vertically isothermal).");
   s.real("gas.h_ref")
       .default_value(0.0)
@@ -120,6 +131,7 @@ void GasConfig::declare(core::DeckSchema& s) {
       .unit("code density")
       .doc("Floor of the hydrostatic density.");
   s.rule(check_viscosity);
+  s.rule(check_column);
 }
 
 void GasConfig::derive(const units::UnitSystem& u, double h_ref) {

@@ -110,6 +110,23 @@ TEST(DiscDriver, NonFiniteCheckNamesTheFirstFieldAndCellInOneReduction) {
   EXPECT_EQ(counter.reductions(), 1);
 }
 
+// A grid above the mid-plane has no hydrostatic column to normalise to Sigma: the
+// deck is refused, naming the key; a grid from the mid-plane up or across it is not.
+TEST(DiscDriver, GasGridMustContainOrEndAtTheMidPlane) {
+  for (const auto& [override, key] :
+       {std::pair{"grid.theta_min=0.05", "grid.theta_min"}, std::pair{"grid.theta_max=-0.02", "grid.theta_max"}}) {
+    try {
+      make_deck({override});
+      ADD_FAILURE() << override << " was accepted";
+    } catch (const core::DeckError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("mid-plane"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(make_deck({"grid.theta_min=0.0"}));
+  EXPECT_NO_THROW(make_deck({"grid.theta_max=0.0"}));
+}
+
 TEST(DiscDriver, SchedulesCallSubSolversWhenDue) {
   const auto deck = make_deck({"driver.evolve_gas=false", "dust.sizes=[1e-3]"});
   const auto units = units::unit_system_by_name("au_msun");
