@@ -62,7 +62,7 @@ struct DustSettings {
   Real c_dust = 0.3;              ///< C0 of HPL18 eq. 44 / PL15 eq. 16
   bool floor_negative = true;     ///< PL15 sec. 4.4.2: eps_j < 0 -> 0, removed mass reported
   bool project_mass = true;       ///< S variable: rescale q_j after each step to the step's dust mass
-  bool limit_ts = false;          ///< t_sj <= h / c_s in the dust terms (Ballabio et al. 2018 flux limiter)
+  bool limit_ts = false;          ///< t_sj <= h / c_s wherever t_sj enters (Ballabio et al. 2018 flux limiter)
   bool write_velocities = false;  ///< snapshots hold v_dj = v_g + Dv_j per species (HPL18 eq. 24-25)
 
   /// Declares the optional table [dust] (method, species, drag, sizes, ...).
