@@ -155,7 +155,7 @@ struct LoopData {
   RealView1 m, h, rho, omega, P, cs, alpha, u, dudt, divv, vsig;
   IntView1 type;
   RealView2 var, sv, dvar, ts, coef;
-  RealView1 eps_tot, eps_ts, d_tot, uloc;
+  RealView1 eps_tot, eps_ts, eps_ts_free, d_tot, uloc;
   decltype(OneFluidDust::pack) pk;
   decltype(NeighbourList::offsets) offsets, neigh;
   decltype(NeighbourList::image) image;
@@ -209,17 +209,20 @@ struct PrepareKernel {
       cs(a) = sound_speed_adiabatic(fg * rhoa, P(a), gamma);
     }
     uloc(a) = ua;
-    Real sum_ts = 0.0;
+    Real sum_ts = 0.0, sum_free = 0.0;
     for (int j = 0; j < ns; ++j) {
       Real ej = species_eps<Svar>(var, a, j);
       ej = ej > 0.0 ? ej : 0.0;
       Real t = law(j, ej, e, rhoa, cs(a));
-      if constexpr (LimitTs)
+      if constexpr (LimitTs) {
+        sum_free += ej * t;
         if (t * cs(a) > h(a)) t = h(a) / cs(a);  // Ballabio et al. (2018)
+      }
       ts(a, j) = t;
       sum_ts += ej * t;
     }
     eps_ts(a) = sum_ts;
+    if constexpr (LimitTs) d.eps_ts_free(a) = sum_free;
     Real dsum = 0.0;
     for (int j = 0; j < ns; ++j) {
       Real ej = species_eps<Svar>(var, a, j);
@@ -627,6 +630,7 @@ LoopData loop_data(OneFluidDust& dust, Particles& p, const NeighbourList& nl, co
   d.coef = dust.coef;
   d.eps_tot = dust.eps_tot;
   d.eps_ts = dust.eps_ts;
+  d.eps_ts_free = dust.eps_ts_free;
   d.d_tot = dust.d_tot;
   d.uloc = dust.uloc;
   d.pk = dust.pack;

@@ -149,8 +149,8 @@ void DustSettings::declare(core::DeckSchema& s) {
       .doc(
           "Use min(t_sj, h / c_s) for t_sj (the flux limiter of Ballabio et al. 2018): caps the drift where "
           "the stopping length exceeds the resolution and the terminal-velocity approximation fails (the "
-          "low-density gas above a disc column). The capped value also sets the dust time-step, the written "
-          "velocities and the PL15 eq. 18 warning.");
+          "low-density gas above a disc column). The capped value also sets the dust time-step and the written "
+          "velocities; the PL15 eq. 18 warning counts with the uncapped one.");
   s.boolean("dust.write_velocities")
       .default_value(false)
       .doc(

@@ -27,6 +27,7 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   coef = RealView2("sph::dust_coef", n, ns);
   eps_tot = RealView1("sph::dust_eps", n);
   eps_ts = RealView1("sph::dust_eps_ts", n);
+  eps_ts_free = RealView1("sph::dust_eps_ts_free", s_.limit_ts ? n : 0);
   d_tot = RealView1("sph::dust_dtot", n);
   uloc = RealView1("sph::dust_u", n);
   gforce = RealView2("sph::dust_gforce", n, dim);
@@ -55,6 +56,7 @@ void OneFluidDust::set_eps(const std::vector<Real>& eps, const IntView1& id) {
 void OneFluidDust::reorder(ParticleReorder& r) {
   for (RealView2* v : {&var, &var_pred, &dvar, &s_pairs, &ts, &coef, &gforce}) r.apply(*v);
   for (RealView1* v : {&eps_tot, &eps_ts, &d_tot, &uloc}) r.apply(*v);
+  if (s_.limit_ts) r.apply(eps_ts_free);
 }
 
 void OneFluidDust::initialise(const Particles& p) {
@@ -175,6 +177,7 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
   const auto type = p.type;
   const auto e = eps_tot;
   const auto ets = eps_ts;
+  const auto free_ets = s_.limit_ts ? eps_ts_free : eps_ts;  // the eq. 18 check: t_s before the limiter
   const Real c0 = s_.c_dust;
   const Real ccour = cfg.c_cour;
   const bool combined = s_.timestep == DustTimestep::Combined;
@@ -197,13 +200,14 @@ Real OneFluidDust::timestep(const Particles& p, const SphConfig& cfg) {
   par_reduce(
       "sph::dust_tva_check", 0, p.n,
       KOKKOS_LAMBDA(int a, int& c) {
-        if (type(a) == kGas && ets(a) > ccour * h(a) / cs(a)) ++c;  // PL15 eq. 18
+        if (type(a) == kGas && free_ets(a) > ccour * h(a) / cs(a)) ++c;  // PL15 eq. 18
       },
       bad);
   tva_violations_ = bad;
   if (bad > 0 && !warned_) {
     logging::warn("sph dust: eps T_s exceeds the Courant time-step on ", bad,
-                  " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)");
+                  " particles: the terminal-velocity approximation is inaccurate there (PL15 sec. 2.2)",
+                  s_.limit_ts ? " (dust.limit_stopping_time caps each T_sj at h / c_s)" : "");
     warned_ = true;
   }
   return dt;

@@ -119,6 +119,8 @@ struct DustyWaveSetup {
   double alpha_u = 0.0;
   KernelType kernel = KernelType::M4;
   double hfact = 1.2;
+  double eps = 0.5;       ///< total dust fraction, shared equally by the species
+  bool limit_ts = false;  ///< dust.limit_stopping_time
 };
 
 /// PL15 sec. 4.1 through the library set-up (mote/setups/dust_problems.hpp):
@@ -139,7 +141,8 @@ inline SphSystem make_dustywave(const DustyWaveSetup& w) {
   ds.pdv = w.pdv;
   ds.drag = DragLaw::ConstantK;
   ds.k_drag = {w.K / w.nspecies};
-  ds.eps = {0.5 / w.nspecies};
+  ds.eps = {w.eps / w.nspecies};
+  ds.limit_ts = w.limit_ts;
   DustyWave dw;
   dw.n = w.n;
   auto sys = dustywave(dw, cfg, ds).make_system();

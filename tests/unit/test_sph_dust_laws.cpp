@@ -153,7 +153,8 @@ TEST(SphDustLaws, NegativeFloorAccounting) {
   EXPECT_NEAR(d.dust_mass(p), m0 + change + expect, 1e-15);
 }
 
-// PL15 eq. 18 warning count: eps t_s > C h / c_s at weak drag, none at strong drag.
+// PL15 eq. 18 warning count: eps t_s > C h / c_s at weak drag, none at strong drag, and
+// with the stopping-time limiter still where the uncapped t_s fails the test.
 TEST(SphDustLaws, TerminalVelocityWarning) {
   mote::sph::testing::DustyWaveSetup w;
   w.K = 1.0;
@@ -162,6 +163,14 @@ TEST(SphDustLaws, TerminalVelocityWarning) {
   w.K = 1000.0;
   SphSystem strong = mote::sph::testing::make_dustywave(w);
   EXPECT_EQ(strong.module<OneFluidDust>()->tva_violations(), 0);
+  // With the stopping-time limiter the check still counts with t_s before the cap: eps = 0.05
+  // and K = 0.1 give eps t_s ~ 0.025 against C h / c_s ~ 0.004, while the capped eps h / c_s
+  // lies below it (eps < C_cour).
+  w.K = 0.1;
+  w.eps = 0.05;
+  w.limit_ts = true;
+  SphSystem capped = mote::sph::testing::make_dustywave(w);
+  EXPECT_EQ(capped.module<OneFluidDust>()->tva_violations(), 100);
 }
 
 TEST(SphDustLaws, DeckTable) {

@@ -132,9 +132,12 @@ class OneFluidDust : public SphModule {
   RealView2 ts, coef;
   RealView1 eps_tot;  ///< eps of the state used by the forces
   RealView1 eps_ts;   ///< sum_j eps_j T_sj (eq. 18)
-  RealView1 d_tot;    ///< sum_j eps_j tilde T_sj
-  RealView1 uloc;     ///< gas u used in the pair terms
-  RealView2 gforce;   ///< -(hydro acceleration) = (1 - eps) Delta f (PL15 eq. 29-30), n x dim
+  /// sum_j eps_j t_sj before the stopping-time limiter (written with dust.limit_stopping_time):
+  /// the PL15 eq. 18 check counts where the terminal-velocity approximation fails, capped or not.
+  RealView1 eps_ts_free;
+  RealView1 d_tot;   ///< sum_j eps_j tilde T_sj
+  RealView1 uloc;    ///< gas u used in the pair terms
+  RealView2 gforce;  ///< -(hydro acceleration) = (1 - eps) Delta f (PL15 eq. 29-30), n x dim
   RealView1 kdrag_view() const { return kdrag_; }
   RealView1 size_view() const { return size_; }
   RealView1 tstop_view() const { return tstop_; }
