@@ -37,6 +37,45 @@ bool uses_fragmentation(const Kernel& kernel) {
   return false;
 }
 
+/// One reduction for a call's totals (four would each wait for the device):
+/// sums of the sub-step counts and failures, the minimum proposed next sub-step
+/// (the largest Real where no cell proposes one).
+class CallTotals {
+ public:
+  using reducer = CallTotals;
+  using value_type = CallStatistics;
+  using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+
+  explicit CallTotals(value_type& result) : result_(&result) {}
+
+  KOKKOS_INLINE_FUNCTION void join(value_type& dest, const value_type& src) const {
+    dest.substeps += src.substeps;
+    dest.rejections += src.rejections;
+    dest.failed_cells += src.failed_cells;
+    dest.min_next_substep = math::min(dest.min_next_substep, src.min_next_substep);
+  }
+#if KOKKOS_VERSION < 40000  // Kokkos 3 joins volatile partial results as well
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& dest, const volatile value_type& src) const {
+    dest.substeps += src.substeps;
+    dest.rejections += src.rejections;
+    dest.failed_cells += src.failed_cells;
+    dest.min_next_substep = math::min(dest.min_next_substep, src.min_next_substep);
+  }
+#endif
+  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
+    v.substeps = 0;
+    v.rejections = 0;
+    v.failed_cells = 0;
+    v.min_next_substep = Kokkos::reduction_identity<Real>::min();
+  }
+  KOKKOS_INLINE_FUNCTION value_type& reference() const { return *result_.data(); }
+  KOKKOS_INLINE_FUNCTION result_view_type view() const { return result_; }
+  KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
+
+ private:
+  result_view_type result_;
+};
+
 }  // namespace detail
 
 AnyKernel make_kernel(const CoagulationSettings& s, const MassGrid& grid, const GasCells& gas) {
@@ -161,25 +200,15 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
     debug_fence("coagulation::integrate");
   }
   CallStatistics stats;
-  long long acc = 0, rej = 0;
-  int bad = 0;
-  Real hmin = 0;
-  par_reduce(
-      "coagulation::count_substeps", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += steps(c); }, acc);
-  par_reduce(
-      "coagulation::count_rejections", 0, cells_, KOKKOS_LAMBDA(int c, long long& s) { s += rejected(c); }, rej);
-  par_reduce(
-      "coagulation::count_failed", 0, cells_, KOKKOS_LAMBDA(int c, int& s) { s += failed(c); }, bad);
-  par_reduce(
-      "coagulation::min_next_substep", 0, cells_,
-      KOKKOS_LAMBDA(int c, Real& m) {
-        if (next(c) > 0) m = math::min(m, next(c));
+  Kokkos::parallel_reduce(
+      "coagulation::call_statistics", Kokkos::RangePolicy<ExecSpace>(0, cells_),
+      KOKKOS_LAMBDA(int c, CallStatistics& s) {
+        s.substeps += steps(c);
+        s.rejections += rejected(c);
+        s.failed_cells += failed(c);
+        if (next(c) > 0) s.min_next_substep = math::min(s.min_next_substep, next(c));
       },
-      Kokkos::Min<Real>(hmin));
-  stats.substeps = acc;
-  stats.rejections = rej;
-  stats.failed_cells = bad;
-  stats.min_next_substep = hmin;
+      detail::CallTotals(stats));
   return stats;
 }
 

@@ -111,11 +111,11 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
           Q(i, j, s, kMomZ) = rho_new * W(i, j, s, kVZ);
         }
       });
-  update_next_interval();
+  set_next_interval(stats.min_next_substep);
   return stats;
 }
 
-void DiscCoagulation::update_next_interval() {
+Real DiscCoagulation::local_min_next_substep() const {
   auto next = solver_.next_substep();
   Real local = std::numeric_limits<Real>::max();  // also the identity of the Min reduction
   par_reduce(
@@ -124,7 +124,11 @@ void DiscCoagulation::update_next_interval() {
         if (next(c) > 0) m = math::min(m, next(c));
       },
       Kokkos::Min<Real>(local));
-  const double global = grid_.comm().min(local);
+  return local;
+}
+
+void DiscCoagulation::set_next_interval(Real local_min) {
+  const double global = grid_.comm().min(local_min);
   next_interval_ = global < std::numeric_limits<Real>::max() ? global / units_.time : 0.0;
 }
 
@@ -143,7 +147,7 @@ void DiscCoagulation::load_state(const io::H5File& file, const std::string& name
   auto h = Kokkos::create_mirror_view(next);
   file.read(name, cell_block(), h.data());
   Kokkos::deep_copy(next, h);
-  update_next_interval();
+  set_next_interval(local_min_next_substep());
 }
 
 }  // namespace mote::disc

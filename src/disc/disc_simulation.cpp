@@ -178,9 +178,10 @@ std::string DiscSimulation::dt_limit() const {
 std::vector<io::Diagnostic> DiscSimulation::diagnostics() const {
   std::vector<io::Diagnostic> d;
   double total = 0.0;
-  for (int s = 0; s < dust_->species(); ++s) {
-    d.push_back({"dust_mass_" + std::to_string(s), dust_->mass(s)});
-    total += d.back().value;
+  const auto masses = dust_->species_masses();
+  for (size_t s = 0; s < masses.size(); ++s) {
+    d.push_back({"dust_mass_" + std::to_string(s), masses[s]});
+    total += masses[s];
   }
   const auto budget = dust_->mass_budget();
   d.push_back({"dust_mass", total});

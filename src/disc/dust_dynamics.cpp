@@ -781,4 +781,43 @@ double DustDynamics::mass(int s) const {
   return grid_.comm().sum(m);
 }
 
+namespace {
+
+/// Sum over the active cells of Q(i, j, s, kRho) V(i, j) for every species s
+/// at once: a Kokkos reduction over an array of runtime length (value_count).
+struct SpeciesMassSum {
+  using value_type = Real[];
+  View<Real****> Q;
+  RealView2 V;
+  int ib, jb, nt;
+  unsigned value_count;
+
+  KOKKOS_INLINE_FUNCTION void operator()(int c, Real acc[]) const {
+    const int i = ib + c / nt, j = jb + c % nt;
+    for (unsigned s = 0; s < value_count; ++s) acc[s] += Q(i, j, s, kRho) * V(i, j);
+  }
+  KOKKOS_INLINE_FUNCTION void init(Real acc[]) const {
+    for (unsigned s = 0; s < value_count; ++s) acc[s] = 0;
+  }
+  KOKKOS_INLINE_FUNCTION void join(Real dst[], const Real src[]) const {
+    for (unsigned s = 0; s < value_count; ++s) dst[s] += src[s];
+  }
+#if KOKKOS_VERSION < 40000  // Kokkos 3 joins volatile partial results as well
+  KOKKOS_INLINE_FUNCTION void join(volatile Real dst[], const volatile Real src[]) const {
+    for (unsigned s = 0; s < value_count; ++s) dst[s] += src[s];
+  }
+#endif
+};
+
+}  // namespace
+
+std::vector<double> DustDynamics::species_masses() const {
+  const SpeciesMassSum sum{Q, grid_.V, grid_.i_begin(), grid_.j_begin(), grid_.nt, static_cast<unsigned>(ns_)};
+  std::vector<Real> local(static_cast<size_t>(ns_), 0.0);
+  const Kokkos::View<Real*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> result(local.data(), local.size());
+  Kokkos::parallel_reduce("disc::dust_species_masses", Kokkos::RangePolicy<ExecSpace>(0, grid_.nr * grid_.nt), sum,
+                          result);
+  return grid_.comm().sum(std::vector<double>(local.begin(), local.end()));
+}
+
 }  // namespace mote::disc

@@ -4,8 +4,10 @@
 // kept, the adaptive driver schedule, and deck errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,10 +18,12 @@
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_coagulation.hpp"
 #include "mote/disc/disc_simulation.hpp"
+#include "reduction_counter.hpp"
 
 namespace {
 
 using namespace mote;
+using test_tools::ReductionCounter;
 namespace coag = mote::coagulation;
 
 constexpr int kSpecies = 22;  // 1 to 10 micron: 7 bins per mass decade
@@ -121,6 +125,38 @@ TEST(DiscCoagulation, ConservesMassPerCellAndKeepsSpeciesVelocities) {
   std::printf(
       "disc coagulation: %lld sub-steps, largest relative change of a species density %.3f, next interval %.3e\n",
       stats.substeps, max_change, dc.next_interval());
+}
+
+// A call's totals (sub-steps, rejections, failed cells, the smallest proposed
+// sub-step that schedules the next call) come from one reduction, and agree
+// with the solver's per-cell arrays.
+TEST(DiscCoagulation, CallTotalsInOneReduction) {
+  Fixture f;
+  disc::DiscCoagulation dc(f.sim.grid(), f.sim.dust(), f.settings, f.units);
+  coag::CallStatistics stats;
+  int reductions = 0;
+  {
+    ReductionCounter counter;
+    stats = dc.update(f.sim.gas().fields(), kElapsed);
+    reductions = counter.reductions();
+  }
+  EXPECT_EQ(reductions, 1);
+  const auto steps = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dc.solver().substeps());
+  const auto rejected = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dc.solver().rejections());
+  const auto next = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dc.solver().next_substep());
+  long long sum_steps = 0, sum_rejected = 0;
+  double smallest = std::numeric_limits<double>::max();
+  for (size_t c = 0; c < steps.extent(0); ++c) {
+    sum_steps += steps(c);
+    sum_rejected += rejected(c);
+    if (next(c) > 0) smallest = std::min(smallest, next(c));
+  }
+  EXPECT_GT(sum_steps, static_cast<long long>(steps.extent(0)));  // more than one sub-step per cell
+  EXPECT_EQ(stats.substeps, sum_steps);
+  EXPECT_EQ(stats.rejections, sum_rejected);
+  EXPECT_EQ(stats.failed_cells, 0);
+  EXPECT_EQ(stats.min_next_substep, smallest);
+  EXPECT_EQ(dc.next_interval(), smallest / f.units.time);
 }
 
 TEST(DiscCoagulation, EveryCellEqualsTheStandaloneSolver) {

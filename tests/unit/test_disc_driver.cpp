@@ -17,10 +17,12 @@
 #include "mote/core/deck.hpp"
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_simulation.hpp"
+#include "reduction_counter.hpp"
 
 namespace {
 
 using namespace mote;
+using test_tools::ReductionCounter;
 
 core::Deck make_deck(const std::vector<std::string>& overrides = {}) { return test_decks::disc_driver_deck(overrides); }
 
@@ -47,32 +49,42 @@ TEST(DiscDriver, ClosedBoxConservesDustPerSpeciesAndGas) {
   EXPECT_EQ(sim.driver().calls(0), 300);  // the gas, every step
 }
 
+// The history's per-species dust masses come from one reduction over all species
+// (not one per species) and agree with mass(s) to round-off.
+TEST(DiscDriver, SpeciesMassesInOneReduction) {
+  const auto deck = make_deck();
+  const auto units = units::unit_system_by_name("au_msun");
+  disc::DiscSimulation sim(deck, core::Comm::world(), units,
+                           disc::DiscSimulation::well_mixed({0.01, 0.003, 0.001}, 1e-40));
+  double t = 0;
+  for (int n = 0; n < 20; ++n) {  // densities no longer uniform
+    const double dt = sim.max_dt();
+    sim.advance(t, dt);
+    t += dt;
+  }
+  std::vector<double> masses;
+  {
+    ReductionCounter counter;
+    masses = sim.dust().species_masses();
+    EXPECT_EQ(counter.reductions(), 1);
+  }
+  ASSERT_EQ(masses.size(), 3u);
+  for (int s = 0; s < 3; ++s) EXPECT_NEAR(masses[s] / sim.dust().mass(s) - 1, 0.0, 1e-14) << "species " << s;
+  EXPECT_NEAR(masses[0] / masses[1], 0.01 / 0.003, 1e-6);  // closed box: each species keeps its mass
+  const auto diagnostics = sim.diagnostics();
+  for (int s = 0; s < 3; ++s) {
+    const auto name = "dust_mass_" + std::to_string(s);
+    const auto d = std::find_if(diagnostics.begin(), diagnostics.end(), [&](const auto& x) { return x.name == name; });
+    ASSERT_NE(d, diagnostics.end()) << name;
+    EXPECT_EQ(d->value, masses[s]) << name;
+  }
+}
+
 /// Sets element `at` of a View to v on the device.
 template <class V, class... I>
 void set_element(const V& view, double v, I... at) {
   Kokkos::deep_copy(Kokkos::subview(view, at...), v);
 }
-
-/// Counts the parallel reductions between construction and destruction (each one a
-/// host synchronisation on a GPU) through the Kokkos Tools callback.
-class ReductionCounter {
- public:
-  ReductionCounter() {
-    count() = 0;
-    Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(&on_reduce);
-  }
-  ~ReductionCounter() { Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(nullptr); }
-  ReductionCounter(const ReductionCounter&) = delete;
-  ReductionCounter& operator=(const ReductionCounter&) = delete;
-  int reductions() const { return count(); }
-
- private:
-  static int& count() {
-    static int n = 0;
-    return n;
-  }
-  static void on_reduce(const char*, uint32_t, uint64_t* id) { *id = static_cast<uint64_t>(++count()); }
-};
 
 // The non-finite check (run.nan_check_every) names the first failing field, the
 // dust's Q before the gas's Sigma, rho, v_R and v_phi, at the first active cell

@@ -55,12 +55,15 @@ class DiscCoagulation {
   /// Cell index of the coagulation solver for active cell (i, j): (i - i_begin) nt + (j - j_begin).
   int cell(int i, int j) const { return (i - grid_.i_begin()) * grid_.nt + (j - grid_.j_begin()); }
 
-  /// next_interval_ from the solver's proposals (global minimum of the positive
-  /// ones). Public only because nvcc's extended lambdas may not live in private
-  /// member functions.
-  void update_next_interval();
+  /// The smallest positive proposal of the solver's cells on this rank (the
+  /// largest Real where none proposes one). Public only because nvcc's extended
+  /// lambdas may not live in private member functions.
+  Real local_min_next_substep() const;
 
  private:
+  /// next_interval_ from this rank's smallest proposal (the global minimum).
+  void set_next_interval(Real local_min);
+
   const mesh::Grid& grid_;
   DustDynamics& dust_;
   units::UnitSystem units_;

@@ -132,6 +132,9 @@ class DustDynamics {
   void step(double dt);
   /// Total mass of species s over the whole grid (all ranks).
   double mass(int s) const;
+  /// The mass of every species over the whole grid (all ranks), in one
+  /// reduction and one message: species_masses()[s] equals mass(s) to round-off.
+  std::vector<double> species_masses() const;
   /// Dust mass added by the floor and lost through the grid's outer faces since
   /// the start of the run, all species and ranks: the mass of every species
   /// changes only by these and by coagulation (which conserves the total), so
