@@ -40,7 +40,8 @@ Both: dust mass per species from the history file conserved to --mass-tol
 (1e-12; closed boundaries only) and the smallest density >= the floor (C6).
 Long runs at a steady state repeat the same roundings every step, so the
 mass drifts linearly with the step count (about 3e-18 per step): the full
-C2 run (8.5e6 steps, drift 1.4e-11) is checked with --mass-tol 1e-10. Prints 'N passed, M failed'; exits non-zero on failure.
+C2 run (1.06e6 steps, drift up to 1.5e-12; an earlier version's 9.96e6 steps
+drifted by 1.7e-11) is checked with --mass-tol 1e-10. Prints 'N passed, M failed'; exits non-zero on failure.
 """
 import argparse
 import os

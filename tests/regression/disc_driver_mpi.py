@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The coupled disc driver (dust + evolving gas, RBO24 sec. 6) on 2 MPI ranks
-(radial slabs) matches 1 rank to 1e-12 (issue 5), a 2-rank checkpoint
-restarts on 1 rank to the same state, and the last progress line names the
+(radial slabs) matches 1 rank bit for bit (issue 5 asked for 1e-12; the
+slabs change no arithmetic: halos carry the neighbours' values and the only
+reduction in the state's path is the time-step's minimum), a 2-rank
+checkpoint restarts on 1 rank to the same bits, and the last progress line names the
 same constraint, species and cell for the next step on 1 and 2 ranks.
 
 usage: disc_driver_mpi.py EXE WORKDIR MPIEXEC [ARGS ...]
@@ -35,9 +37,10 @@ for n in names:
     scale = max(np.max(np.abs(a.fields[n])), 1e-300)
     d2 = max(d2, np.max(np.abs(a.fields[n] - b.fields[n])) / scale)
     d3 = max(d3, np.max(np.abs(a.fields[n] - c.fields[n])) / scale)
-checks.check(d2 <= 1e-12, f"2 ranks match 1 rank over {len(names)} dust and gas fields: max relative difference {d2:.2e} <= 1e-12")
-checks.check(d3 <= 1e-12, f"2-rank checkpoint restarted on 1 rank: {d3:.2e} <= 1e-12")
-
+same_two = all(a.fields[n].tobytes() == b.fields[n].tobytes() for n in names)
+same_mixed = all(a.fields[n].tobytes() == c.fields[n].tobytes() for n in names)
+checks.check(same_two, f"2 ranks match 1 rank bit for bit over {len(names)} dust and gas fields (max relative difference {d2:.2e})")
+checks.check(same_mixed, f"2-rank checkpoint restarted on 1 rank: bit for bit (max relative difference {d3:.2e})")
 
 def next_dt(log):
     lines = [l for l in log.splitlines() if l.startswith("step") and "(next dt: " in l]
@@ -47,5 +50,5 @@ def next_dt(log):
 n1, n2 = next_dt(log_one), next_dt(log_two)
 checks.check(n1 == n2 and "of species" in n1 and "(cell " in n1, f"next-step constraint on 1 and 2 ranks: '{n1}' / '{n2}'")
 sa = a.data["gas_Sigma"]
-checks.check(np.max(np.abs(sa - b.data["gas_Sigma"])) <= 1e-12 * np.max(sa), "gas Sigma identical on 1 and 2 ranks")
+checks.check(sa.tobytes() == b.data["gas_Sigma"].tobytes(), "gas Sigma identical on 1 and 2 ranks (bit for bit)")
 sys.exit(checks.finish())

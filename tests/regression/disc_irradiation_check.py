@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """disc_irradiation: VALIDATION D2 from the shipped deck, through the problem's
 own check (T within 1 % of T_star (R_star / 2r)^(1/2) in every optically thin
-cell), a restart from its checkpoint that must reproduce the steady state
+cell), the same for a stratified disc, a restart from its checkpoint that must reproduce the steady state
 bit for bit, and the refusal of radiation.band_means = "local".
 
 usage: disc_irradiation_check.py EXE WORKDIR
@@ -32,6 +32,19 @@ checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
              f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {irradiation.THRESHOLD}")
 checks.check(abs(out["energy_balance"]) <= irradiation.BALANCE,
              f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {irradiation.BALANCE})")
+
+# A stratified thin disc (the density falls by 1e16 over the theta range): before
+# the FLD coefficient was capped at c r its steps undershot to E < 0 there.
+strat_dir = os.path.join(work, "stratified")
+shutil.rmtree(strat_dir, ignore_errors=True)
+run([exe, deck, f"output.dir={strat_dir}", "irradiation.p=-2.25", "irradiation.h=0.05"])
+strat = irradiation.analyse(strat_dir)
+checks.check(strat["cells_thin"] == strat["cells"] and strat["max_error_thin"] <= irradiation.THRESHOLD,
+             f"stratified disc: max |T / T_thin - 1| = {strat['max_error_thin']:.3e} <= {irradiation.THRESHOLD} "
+             f"in {strat['cells_thin']} of {strat['cells']} cells")
+checks.check(abs(strat["energy_balance"]) <= irradiation.BALANCE,
+             f"stratified disc: open-side luminosity / absorbed - 1 = {strat['energy_balance']:.3e} "
+             f"(|.| <= {irradiation.BALANCE})")
 
 # Two steps of 0.5: a restart from the checkpoint after the first continues bit for bit.
 both = os.path.join(work, "two_steps")

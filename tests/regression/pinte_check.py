@@ -5,8 +5,8 @@ problems/disc_passive/check.py.
 usage: pinte_check.py EXE WORKDIR ci|full
 
 ci:   pinte_low.toml on a 60 x 40 grid (10 inner cells) with its 20 bands:
-      energy balance, dust mass, the optically thin top row; pinte_high.toml's
-      dust mass at set-up (t_end = 0).
+      energy balance, dust mass, the optically thin top row, the super-heated
+      layer; pinte_high.toml's dust mass at set-up (t_end = 0).
 full: both decks at their resolution and at 1.5x it, two runs at a time:
       every check of check.py with --compare, and the figure in the style of
       RBO24 Fig. 9 (WORKDIR/pinte.png).
@@ -62,6 +62,9 @@ def check_run(name, run_dir, fine_dir=None, ci_thin=None):
     checks.check(abs(out["thin_worst"]) <= passive.THIN_LIMIT,
                  f"{name}: top row T / T_thin - 1 = {out['thin_worst']:.3e} at worst, median {out['thin_median']:.3e} "
                  f"(|.| <= {passive.THIN_LIMIT:g})")
+    checks.check(out["superheating_min"] >= passive.SUPERHEATING,
+                 f"{name}: super-heated layer, min over R >= {passive.RIM:g} R_in of T_max / T_mid = "
+                 f"{out['superheating_min']:.2f} (>= {passive.SUPERHEATING:g})")
     if ci_thin is not None:
         checks.check(abs(out["thin_worst"]) <= ci_thin,
                      f"{name}: top row T / T_thin - 1 = {out['thin_worst']:.3e} at worst on the CI grid "

@@ -108,10 +108,11 @@ const char* kernel_name(KernelType k) {
 // at the default h_fact the lattice-sum error of the kernel itself exceeds
 // that for M4 in 1D (1.8e-3) and on the 3D close-packed lattice (2.9e-3), and
 // for Wendland C4 everywhere (7e-3 to 9e-3, the known density bias of Wendland
-// kernels, Dehnen & Aly 2012 sec. 5): these cases get 1e-2. The solver itself
-// is checked to the h-rho tolerance in every case.
+// kernels, Dehnen & Aly 2012 sec. 5): these cases get 1e-2. M6 is held at
+// 1e-4 (measured <= 8.0e-5, the 2D hexagonal lattice). The solver itself is
+// checked to the h-rho tolerance in every case.
 Real rho_ceiling(KernelType k, int dim, bool close_packed) {
-  if (k == KernelType::M6) return 1e-3;
+  if (k == KernelType::M6) return 1e-4;
   if (k == KernelType::M4 && dim > 1 && !close_packed) return 1e-3;
   return 1e-2;
 }
@@ -159,10 +160,13 @@ TEST(SphDensity, HRhoRelationOnNonUniformParticles) {
     const DensityCheck c = run_density(lat, KernelType::M4, 1.0, 1.0);
     std::printf(
         "[sph density] non-uniform %dD (%d particles): max h-rho error = %.2e, against a brute-force "
-        "density sum %.2e (tolerance 1e-4), Omega in [%.3f, %.3f]\n",
+        "density sum %.2e (iteration tolerance 1e-4), Omega in [%.3f, %.3f]\n",
         dim, lat.size(), c.max_h_err, c.max_h_err_brute, c.min_omega, c.max_omega);
     EXPECT_LT(c.max_h_err, 1e-4);
-    EXPECT_LT(c.max_h_err_brute, 1e-4);
+    // The final Newton step, taken without another pass, leaves O(tol^2) = 1e-8
+    // against the density sum (measured 8.5e-9, 1.1e-11, 6.0e-12 in 1D, 2D, 3D);
+    // without it the error would be of the tolerance, 1e-4.
+    EXPECT_LT(c.max_h_err_brute, 1e-7);
     EXPECT_GT(c.max_h_err_brute, 0.0);  // the brute-force check ran
     EXPECT_GT(c.min_omega, 0.0);
   }
