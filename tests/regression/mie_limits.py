@@ -1,6 +1,7 @@
 """The Mie generator (python/mote/mie.py) against independent checks: the
 cross-sections and g from the series against the integrated phase function
-(|S1|^2 + |S2|^2) and the optical theorem, the Rayleigh limit, the
+(|S1|^2 + |S2|^2) and the optical theorem, Bohren & Huffman's published
+sample case (which fixes the series' coefficients), the Rayleigh limit, the
 extinction paradox (Q_ext -> 2), Q_abs = 0 for a real index, and the table
 format mote::radiation::read_dsharp_table reads.
 Usage: mie_limits.py <python dir> <work dir>"""
@@ -36,6 +37,12 @@ for x, m in [(0.5, 1.5 + 0.01j), (3.0, 1.7 + 0.1j), (10.0, 1.33 + 0.0j), (25.0, 
     check(f"phase function x={x} m={m}",
           abs(q_sca_int / q_sca - 1) < 1e-8 and abs(g_int - g) < 1e-8 and abs(q_ext_theorem / q_ext - 1) < 1e-10,
           f"Q_sca {q_sca:.8g} vs {q_sca_int:.8g}, g {g:.8g} vs {g_int:.8g}, Q_ext {q_ext:.8g} vs {q_ext_theorem:.8g}")
+
+# Bohren & Huffman's BHMIE sample case (a sphere of radius 0.525 um in light of
+# 0.6328 um, m = 1.55): Q_ext = Q_sca = 3.10543, to the six digits it prints.
+q_ext, q_sca, g = mie.efficiencies(2 * np.pi * 0.525 / 0.6328, 1.55 + 0.0j)
+check("Bohren & Huffman's BHMIE sample x=5.213 m=1.55", abs(q_ext - 3.10543) < 5e-6 and abs(q_sca - 3.10543) < 5e-6,
+      f"Q_ext {q_ext:.6f}, Q_sca {q_sca:.6f} against 3.10543")
 
 x, m = 0.01, 1.5 + 0.1j
 q_ext, q_sca, g = mie.efficiencies(x, m)

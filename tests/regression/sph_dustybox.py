@@ -3,11 +3,13 @@
 with the engine's time-step (the gas Courant condition, dt = 0.011) and
 t_s = 0.1, 1e-3 and 1e-5 (dt / t_s = 0.1, 11 and 1100), at eps = 0.01 and 1,
 with the improved drag (LAB15 eq. 17-19): check.py finds the dust velocity
-within 1e-3 of eq. 31 and the momentum budget exact to 1e-12; the original
+within 1e-9 of eq. 31 (the scheme is exact for the uniform box: measured
+round-off, at most 2.8e-13; VALIDATION asks 1e-3) and the momentum budget
+exact to 1e-12; the original
 scheme (eq. 4-6) at dt / t_s = 11 has its error reported; one figure of both.
 B2 (VALIDATION: 20^3 particles per phase on cubic lattices in [-2, 2)^3, the
 dust lattice shifted by half a spacing, SPH-summed densities): the same t_s
-and eps at dt = 0.05 (dt / t_s = 0.5 to 5000), asserted at 1e-3 (VALIDATION:
+and eps at dt = 0.05 (dt / t_s = 0.5 to 5000), asserted at 1e-9 (VALIDATION:
 2 %). Two and three species, 1D and 3D, against the exact solution of the linear system (see below).
 
 usage: sph_dustybox.py EXE WORKDIR
@@ -28,7 +30,7 @@ for eps in (0.01, 1.0):
     for ts in (0.1, 1e-3, 1e-5):
         out = os.path.join(work, f"eps{eps:g}_ts{ts:g}")
         run([exe, deck, f"output.dir={out}", f"dust.stopping_time=[{ts!r}]", f"dustybox.eps={eps!r}"])
-        c = run(check + [out, "--ts", repr(ts), "--eps", repr(eps), "--max-error", "1e-3"], expect=None)
+        c = run(check + [out, "--ts", repr(ts), "--eps", repr(eps), "--max-error", "1e-9"], expect=None)
         print(c.stdout.strip())
         checks.check(c.returncode == 0, f"improved drag, eps = {eps:g}, t_s = {ts:g}: v_D against eq. 31")
 for eps in (0.01, 1.0):
@@ -36,7 +38,7 @@ for eps in (0.01, 1.0):
         out = os.path.join(work, f"b2_eps{eps:g}_ts{ts:g}")
         run([exe, deck, f"output.dir={out}", f"dust.stopping_time=[{ts!r}]", f"dustybox.eps={eps!r}", "dustybox.dim=3",
              "dustybox.n=20"])
-        c = run(check + [out, "--ts", repr(ts), "--eps", repr(eps), "--max-error", "1e-3"], expect=None)
+        c = run(check + [out, "--ts", repr(ts), "--eps", repr(eps), "--max-error", "1e-9"], expect=None)
         print(c.stdout.strip())
         checks.check(c.returncode == 0, f"B2 (3D, 2 x 20^3), eps = {eps:g}, t_s = {ts:g}: v_D against eq. 31")
 # Several species (dust.species = N, each rho_D / rho_G = eps, own lattice and t_s) against the exact

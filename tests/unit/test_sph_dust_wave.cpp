@@ -101,6 +101,12 @@ WaveErrors run_wave(const DustyWaveSetup& w, double t_end) {
   return r;
 }
 
+// Relative drift of the total energy. The wave (amplitude 1e-4) carries some
+// 5e-9 of the total, so a non-conservative term in the dust or drag terms moves
+// the total by at most that much: the bound must sit well below it (measured
+// 2e-15 to 3.1e-13 over the cases here).
+constexpr double kWaveEnergyTol = 1e-11;
+
 const char* name(DustDiscretisation d) {
   return d == DustDiscretisation::SecondDerivatives ? "second derivatives" : "two first derivatives";
 }
@@ -135,7 +141,7 @@ TEST(SphDustWave, AnalyticAtStrongDrag) {
         EXPECT_LT(r.mass_drift, 1e-12);
         EXPECT_LT(r.dust_drift, 1e-12);
         EXPECT_LT(r.mom_drift, kWaveMomentumTol);
-        EXPECT_LT(r.energy_drift, 1e-6);
+        EXPECT_LT(r.energy_drift, kWaveEnergyTol);
       }
     }
   }
@@ -266,7 +272,7 @@ TEST(SphDustWave, ConservationVariants) {
         EXPECT_LT(r.mom_drift, kWaveMomentumTol);
         // eps: linear in the variable, exact; S: quadratic, exact with the projection (dust.project_mass).
         EXPECT_LT(r.dust_drift, 1e-12);
-        EXPECT_LT(r.energy_drift, 1e-8);
+        EXPECT_LT(r.energy_drift, kWaveEnergyTol);
       }
     }
   }

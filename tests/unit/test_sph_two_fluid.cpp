@@ -106,6 +106,11 @@ std::pair<Real, Real> engine_box_error(const DustyBox& box, Real ts, Real t_end)
   return {worst, sys->time() / sys->steps() / ts};
 }
 
+// LAB15's improved scheme is exact for a uniform dustybox at any dt / t_s (their
+// sec. 3): the errors are round-off (measured 3.6e-15 to 1.8e-12 below), and the
+// original scheme is off by 1.3e-2 already at dt / t_s = 0.1.
+constexpr Real kExactToRoundOff = 1e-9;
+
 // B1: 128 + 128 particles, t_s in {0.01, 0.1, 1}, eps in {0.01, 1}, dt / t_s from 0.1 to 1e3.
 TEST(TwoFluidDust, DustyBox1DFollowsLab15Eq31AtAnyTimeStep) {
   Real worst = 0.0;
@@ -116,7 +121,7 @@ TEST(TwoFluidDust, DustyBox1DFollowsLab15Eq31AtAnyTimeStep) {
         box.eps = eps;
         const Real err = fixed_box_error(box, ts, ratio * ts, 20, TwoFluidDrag::Improved);
         worst = std::max(worst, err);
-        EXPECT_LE(err, 1e-3) << "eps " << eps << " t_s " << ts << " dt/t_s " << ratio;
+        EXPECT_LE(err, kExactToRoundOff) << "eps " << eps << " t_s " << ts << " dt/t_s " << ratio;
       }
     }
   }
@@ -159,8 +164,8 @@ TEST(TwoFluidDust, ConstantKAndEpsteinDragFollowEq31) {
     const Real ee = fixed_box_error(box, ep, ts_ep, ratio * ts_ep, 20);
     std::printf("constant K (t_s %.4g), Epstein (t_s %.4g), dt/t_s = %g: errors %.3e, %.3e\n", ts_k, ts_ep, ratio, ek,
                 ee);
-    EXPECT_LE(ek, 1e-3);
-    EXPECT_LE(ee, 1e-3);
+    EXPECT_LE(ek, kExactToRoundOff);
+    EXPECT_LE(ee, kExactToRoundOff);
   }
 }
 
@@ -175,7 +180,7 @@ TEST(TwoFluidDust, DustyBoxThroughTheEngineAtLongTimeSteps) {
       const auto [err, ratio] = engine_box_error(box, ts, 2.0);
       std::printf("B%d %dD dustybox, t_s = %g: mean dt/t_s %.3g, largest relative error of v_D %.3e\n",
                   dim == 3 ? 2 : 1, dim, ts, ratio, err);
-      EXPECT_LE(err, dim == 3 ? 0.02 : 1e-3) << dim << "D, t_s " << ts;
+      EXPECT_LE(err, kExactToRoundOff) << dim << "D, t_s " << ts;
       if (ts < 1e-3) EXPECT_GT(ratio, 100.0);
     }
   }
