@@ -22,6 +22,10 @@ import mote  # noqa: E402
 exe, work = sys.argv[1], sys.argv[2]
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_irradiation", "disc_irradiation.toml")
 checks = Checks()
+# The steady state's energy balance, held here to 1e-6 (VALIDATION D5 and check.py
+# allow 1e-3; measured 6.7e-10 to 8e-8 on these decks): the regression the c r
+# cap on the FLD coefficient removed showed 3e-5, which 1e-3 would let through.
+BALANCE = 1e-6
 
 out_dir = os.path.join(work, "default")
 shutil.rmtree(out_dir, ignore_errors=True)
@@ -30,8 +34,8 @@ out = irradiation.analyse(out_dir)
 checks.check(out["cells_thin"] == out["cells"], f"every cell optically thin ({out['cells_thin']} of {out['cells']})")
 checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
              f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {irradiation.THRESHOLD}")
-checks.check(abs(out["energy_balance"]) <= irradiation.BALANCE,
-             f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {irradiation.BALANCE})")
+checks.check(abs(out["energy_balance"]) <= BALANCE,
+             f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {BALANCE})")
 
 # A stratified thin disc (the density falls by 1e16 over the theta range): before
 # the FLD coefficient was capped at c r its steps undershot to E < 0 there.
@@ -42,9 +46,9 @@ strat = irradiation.analyse(strat_dir)
 checks.check(strat["cells_thin"] == strat["cells"] and strat["max_error_thin"] <= irradiation.THRESHOLD,
              f"stratified disc: max |T / T_thin - 1| = {strat['max_error_thin']:.3e} <= {irradiation.THRESHOLD} "
              f"in {strat['cells_thin']} of {strat['cells']} cells")
-checks.check(abs(strat["energy_balance"]) <= irradiation.BALANCE,
+checks.check(abs(strat["energy_balance"]) <= BALANCE,
              f"stratified disc: open-side luminosity / absorbed - 1 = {strat['energy_balance']:.3e} "
-             f"(|.| <= {irradiation.BALANCE})")
+             f"(|.| <= {BALANCE})")
 
 # Two steps of 0.5: a restart from the checkpoint after the first continues bit for bit.
 both = os.path.join(work, "two_steps")

@@ -23,6 +23,10 @@ import mote  # noqa: E402
 exe, work = sys.argv[1], sys.argv[2]
 deck = os.path.join(os.path.dirname(__file__), "..", "..", "problems", "disc_passive", "disc_passive.toml")
 checks = Checks()
+# The steady state's energy balance, held here to 10 x the deck's solver tolerance
+# of 1e-6 (VALIDATION D5 and check.py allow 1e-3; measured -9.6e-7): the regression
+# the c r cap on the FLD coefficient removed showed 3e-5, which 1e-3 would let through.
+BALANCE = 1e-5
 
 
 def fresh(name):
@@ -35,8 +39,8 @@ coarse, fine = fresh("default"), fresh("fine")
 run([exe, deck, f"output.dir={coarse}"])
 run([exe, deck, f"output.dir={fine}", "grid.nr=72", "grid.ntheta=48"])
 out = passive.analyse(coarse, fine)
-checks.check(abs(out["energy_balance"]) <= passive.BALANCE,
-             f"energy balance {out['energy_balance']:.3e} (|.| <= {passive.BALANCE})")
+checks.check(abs(out["energy_balance"]) <= BALANCE,
+             f"energy balance {out['energy_balance']:.3e} (|.| <= {BALANCE})")
 checks.check(out["superheating_min"] >= passive.SUPERHEATING,
              f"super-heated layer: T_max / T_mid >= {out['superheating_min']:.2f} (>= {passive.SUPERHEATING})")
 checks.check(out["mid_change"] < passive.CONVERGENCE and out["top_change"] < passive.CONVERGENCE,

@@ -25,6 +25,10 @@ import check as passive  # noqa: E402
 
 exe, work, mode = sys.argv[1], sys.argv[2], sys.argv[3]
 checks = Checks()
+# The steady state's energy balance, held here to 1e-6 (VALIDATION D5 and check.py
+# allow 1e-3; measured 6.7e-10 to 8e-8 on these decks): the regression the c r
+# cap on the FLD coefficient removed showed 3e-5, which 1e-3 would let through.
+BALANCE = 1e-6
 MASSES = {"low": 1e-2, "high": 10.0}
 FINE = {"low": ["grid.nr=360", "grid.r_block_cells=60", "grid.ntheta=225"],
         "high": ["grid.nr=444", "grid.r_block_cells=144", "grid.ntheta=225"]}
@@ -55,8 +59,8 @@ def check_run(name, run_dir, fine_dir=None, ci_thin=None):
     out = passive.analyse(run_dir, fine_dir)
     passive.pinte_checks(run_dir, out)
     mass = MASSES[name]
-    checks.check(abs(out["energy_balance"]) <= passive.BALANCE,
-                 f"{name}: energy balance {out['energy_balance']:.3e} (|.| <= {passive.BALANCE:g})")
+    checks.check(abs(out["energy_balance"]) <= BALANCE,
+                 f"{name}: energy balance {out['energy_balance']:.3e} (|.| <= {BALANCE:g})")
     checks.check(abs(out["dust_mass_earth"] / mass - 1.0) <= passive.MASS,
                  f"{name}: dust mass {out['dust_mass_earth']:.4e} M_earth against {mass:g} (|ratio - 1| <= {passive.MASS:g})")
     checks.check(abs(out["thin_worst"]) <= passive.THIN_LIMIT,

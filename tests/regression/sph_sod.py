@@ -30,7 +30,8 @@ with h5py.File(last) as f:
                  f"snapshot particle fields: {sorted(names)}")
 xmf = open(last[:-3] + ".xmf").read()
 checks.check("Polyvertex" in xmf and "particles/density" in xmf, "XDMF point cloud descriptor")
-c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--max-error", "1e-2"], expect=None)
+c = run([sys.executable, os.path.join(pdir, "check.py"), out, "--max-error", "1e-2", "--energy-tol", "4e-5"],
+        expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0, "Sod: mean |rho - rho_exact| <= 1e-2")
 hist = mote.read_history(os.path.join(out, "history.txt"))
@@ -38,7 +39,9 @@ checks.check(abs(hist["momentum_x"][-1] - hist["momentum_x"][0]) <= 1e-12 * max(
              "momentum conserved to 1e-12 of the largest sum m |v|")
 drift = abs(hist["energy"][-1] - hist["energy"][0]) / hist["energy"][0]
 print(f"energy drift {drift:.2e}")
-checks.check(drift < 1e-3, f"total energy drift {drift:.2e} < 1e-3")
+# The leapfrog's O(dt^2) drift with shock capturing (measured 3.9e-6): 10 x that
+# catches a mis-weighted viscous heating that VALIDATION's 1e-3 would not.
+checks.check(drift < 4e-5, f"total energy drift {drift:.2e} < 4e-5")
 full, split = os.path.join(work, "full"), os.path.join(work, "split")
 run([exe, deck, "run.max_steps=80", f"output.dir={full}"])
 run([exe, deck, "run.max_steps=40", f"output.dir={split}"])

@@ -89,7 +89,7 @@ TEST(SphDustShock, HeavyFluidRiemann) {
     EXPECT_LT(r.mass_drift, 1e-12);
     EXPECT_LT(r.dust_drift, 1e-12);
     EXPECT_LT(r.mom_drift, 1e-12);
-    EXPECT_LT(r.energy_drift, 1e-3);
+    EXPECT_LT(r.energy_drift, 4e-5);  // measured 4.3e-6 (VALIDATION A7: 1e-3)
   }
 }
 

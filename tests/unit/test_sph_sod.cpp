@@ -134,7 +134,7 @@ TEST(SphSod, Tube1D) {
       r.n_measured, r.n_total, r.steps, r.seconds, r.l1, r.energy_drift, r.momentum_error);
   EXPECT_GT(r.n_measured, 450);
   EXPECT_LT(r.l1, 1e-2);
-  EXPECT_LT(r.energy_drift, 1e-3);
+  EXPECT_LT(r.energy_drift, 4e-5);  // measured 3.9e-6 (the leapfrog's O(dt^2); VALIDATION: 1e-3)
   EXPECT_LT(r.momentum_error, 1e-12);
 }
 
@@ -150,7 +150,7 @@ TEST(SlowSphSod, Tube3D) {
       "energy drift %.2e, momentum error %.2e\n",
       r.n_measured, r.n_total, r.steps, r.seconds, r.l1, r.energy_drift, r.momentum_error);
   EXPECT_LT(r.l1, 1e-2);
-  EXPECT_LT(r.energy_drift, 1e-3);
+  EXPECT_LT(r.energy_drift, 1e-6);  // measured 7e-8
   EXPECT_LT(r.momentum_error, 1e-12);
 }
 
