@@ -79,8 +79,11 @@ e = np.max(np.abs(budget - budget[0])) / h["dust_mass"][0]
 checks.check(e <= 1e-10, f"dust mass budget (mass - floor additions + outflow) closes to {e:.2e} <= 1e-10 over {len(h)} rows")
 checks.check(np.any(h["dust_outflow"] != 0), f"mass crossed the open boundaries (net outflow {h['dust_outflow'][-1]:.3e})")
 moved = sum(abs(h[f"dust_mass_{k}"][-1] - h[f"dust_mass_{k}"][0]) for k in range(len(a))) / h["dust_mass"][0]
-checks.check(h["coagulation_calls"][-1] > 0 and moved > 1e-6,
-             f"coagulation ran ({int(h['coagulation_calls'][-1])} calls) and moved {moved:.2e} of the dust mass between species")
+# Measured 5.5e-3 in 2 calls (the outflow, 2.7e-4 of the dust, is a small part): a
+# kernel off by a factor of a few in either direction leaves [1e-3, 3e-2].
+checks.check(h["coagulation_calls"][-1] > 0 and 1e-3 < moved < 3e-2,
+             f"coagulation ran ({int(h['coagulation_calls'][-1])} calls) and moved {moved:.2e} of the dust mass between "
+             "species (1e-3 to 3e-2)")
 
 x, y = mote.last_snapshot(full), mote.last_snapshot(split)
 checks.check(x.step == y.step and x.time == y.time, f"both end at step {x.step}, t = {x.time!r} ({y.step}, {y.time!r})")
