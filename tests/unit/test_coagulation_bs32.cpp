@@ -29,11 +29,11 @@ struct Logistic {
 
 double logistic_exact(double y0, double r, double t) { return 1.0 / (1.0 + (1.0 / y0 - 1.0) * std::exp(-r * t)); }
 
-/// Runs bs32_integrate on one team; returns (y0, y1, accepted, rejected, h_next).
+/// Runs bs32_integrate on one team; returns (y0, y1, accepted, rejected, h_next, ok).
 std::vector<double> run_bs32(double y0, double r, double span, coag::Bs32Options opt) {
   using Policy = Kokkos::TeamPolicy<mote::ExecSpace>;
   using Scratch = Kokkos::View<Real*, mote::ExecSpace::scratch_memory_space, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
-  mote::RealView1 out("out", 5);
+  mote::RealView1 out("out", 6);
   const Logistic rhs{r};
   const int n = 2;
   const auto policy = Policy(1, Kokkos::AUTO).set_scratch_size(0, Kokkos::PerTeam(7 * Scratch::shmem_size(n)));
@@ -55,10 +55,11 @@ std::vector<double> run_bs32(double y0, double r, double span, coag::Bs32Options
           out(2) = res.accepted;
           out(3) = res.rejected;
           out(4) = res.h_next;
+          out(5) = res.ok ? 1.0 : 0.0;
         });
       });
   auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
-  return {h(0), h(1), h(2), h(3), h(4)};
+  return {h(0), h(1), h(2), h(3), h(4), h(5)};
 }
 
 }  // namespace
@@ -116,4 +117,10 @@ TEST(CoagulationBs32, GivesUpAfterMaxSteps) {
   o.max_steps = 5;
   const auto res = run_bs32(1e-3, 20.0, 1.0, o);
   EXPECT_LE(res[2] + res[3], 5.0);
+  EXPECT_EQ(res[5], 0.0);  // reported as failed: the span is not covered
+  EXPECT_GT(std::fabs(res[0] - logistic_exact(1e-3, 20.0, 1.0)), 0.1);
+  o.max_steps = 100000;  // the same span with room: covered, and reported so
+  const auto done = run_bs32(1e-3, 20.0, 1.0, o);
+  EXPECT_EQ(done[5], 1.0);
+  EXPECT_NEAR(done[0], logistic_exact(1e-3, 20.0, 1.0), 1e-6);
 }

@@ -15,6 +15,7 @@
 #include "mote/coagulation/coagulation.hpp"
 #include "mote/core/comm.hpp"
 #include "mote/core/deck.hpp"
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/units.hpp"
 #include "mote/disc/disc_coagulation.hpp"
 #include "mote/disc/disc_simulation.hpp"
@@ -256,6 +257,21 @@ TEST(DiscCoagulation, CheckpointRestoresTheProposedSubsteps) {
   ASSERT_EQ(a.extent(0), b.extent(0));
   for (size_t c = 0; c < a.extent(0); ++c) EXPECT_EQ(a(c), b(c));
   std::remove(path.c_str());
+}
+
+// A cell that runs out of coagulation.max_substeps stops the run with a numerical
+// error naming the number of cells (exit code 3 in a problem), not a silent
+// half-integrated span.
+TEST(DiscCoagulation, ExhaustedSubstepsAreANumericalError) {
+  Fixture f;
+  f.settings.max_substeps = 1;
+  disc::DiscCoagulation dc(f.sim.grid(), f.sim.dust(), f.settings, f.units);
+  try {
+    dc.update(f.sim.gas().fields(), kElapsed);
+    ADD_FAILURE() << "one sub-step for 300 yr of growth was accepted";
+  } catch (const core::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("disc coagulation failed in 12 cells"), std::string::npos) << e.what();
+  }
 }
 
 TEST(DiscCoagulation, DeckErrors) {
