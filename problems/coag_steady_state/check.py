@@ -9,8 +9,9 @@ Reads the snapshots, computes sigma_d(m) = m dSigma/dm (eq. 69) and checks
     (divided by the time between them, times the last tenth of the run) <= steady-tol,
   * mass conservation: |Sigma_d(t) / Sigma_d(0) - 1| <= mass-tol at every snapshot,
   * cut-off at the fragmentation limit: the peak of a^... sigma_d lies within
-    [0.3, 1.5] a_frag, a_frag = 2 Sigma_g v_frag^2 / (3 pi rho_m alpha c_s^2)
-    (Birnstiel et al. 2012), and sigma_d has dropped below 1e-3 of its peak by 3 a_frag,
+    [0.8, 1.25] a_frag, a_frag = 2 Sigma_g v_frag^2 / (3 pi rho_m alpha c_s^2)
+    (Birnstiel et al. 2012; measured 0.977-1.069 on grids of 23 to 200 species:
+    a barrier off by sqrt(2) in v_frag moves the peak by a factor 2), and sigma_d has dropped below 1e-3 of its peak by 3 a_frag,
   * with --same-as: the steady state does not depend on the initial distribution:
     relative L1 difference sum|sigma_d - sigma_d,other| / sum sigma_d,other of the last
     snapshots of the two runs (same mass grid) <= max-l1,
@@ -94,8 +95,8 @@ def main():
     check(merr <= args.mass_tol, f"mass conserved: max |Sigma_d / Sigma_d(0) - 1| = {merr:.3e} <= {args.mass_tol:g}")
     s = sig[-1]
     peak = int(np.argmax(s))
-    check(0.3 * a_frag <= a[peak] <= 1.5 * a_frag,
-          f"peak of sigma_d at a = {a[peak]:.3e} cm within [0.3, 1.5] a_frag, a_frag = {a_frag:.3e} cm")
+    check(0.8 * a_frag <= a[peak] <= 1.25 * a_frag,
+          f"peak of sigma_d at a = {a[peak]:.3e} cm within [0.8, 1.25] a_frag, a_frag = {a_frag:.3e} cm")
     beyond = a >= 3 * a_frag
     drop = np.max(s[beyond]) / s[peak] if np.any(beyond) else 0.0
     check(drop < 1e-3, f"cut-off: max sigma_d beyond 3 a_frag / peak = {drop:.3e} < 1e-3")
