@@ -26,7 +26,12 @@ checks = Checks()
 out_dir = os.path.join(work, "default")
 run([exe, deck, f"output.dir={out_dir}"])
 out, _ = hydro.analyse(out_dir)
+# On the shipped deck some figures lie orders below check.py's VALIDATION ceilings
+# (measured rho 2.0e-13, the steady Sigma 6.7e-16, v_phi against the pressure
+# gradient 1.6e-3 and against TL02 7.4e-5): held here near them.
+SHIPPED_DECK = {"rho_rel_err": 1e-10, "sigma_steady": 1e-12, "vphi_pressure_err": 5e-3, "vphi_tl02_rel_err": 3e-4}
 for key, limit in hydro.THRESHOLDS.items():
+    limit = min(limit, SHIPPED_DECK.get(key, limit))
     checks.check(out[key] <= limit, f"{key} = {out[key]:.3e} <= {limit:.1e}")
 checks.check(1.6 < out["vR_mid_over_nu_R"] < 1.9,
              f"mid-plane v_R / (nu / R) = {out['vR_mid_over_nu_R']:.4f} (Takeuchi & Lin: +1.75, outflow)")
