@@ -17,7 +17,9 @@ fractions f^b computed here by quadrature; the energy of RBO24 eq. 47-48,
 linearised in B, conserved by every step (snapshots one step apart) to the
 solver's tolerance times the largest c rho kappa_P dt; the temperature against
 the equilibrium that exact energy conservation would give, C T_0 = C T +
-4 sigma T^4 / c (INFO); and T < T_0 (the matter heated the radiation).
+4 sigma T^4 / c (INFO); T < T_0 (the matter heated the radiation); and T
+against the same backward-Euler steps (RBO24 eq. 47-49 for a uniform medium,
+where every flux vanishes) replayed here in closed form (<= 10 x steps x the deck's solver tolerance).
 
 Prints PASS/FAIL/INFO lines and 'N passed, M failed'; exits non-zero on a failure.
 """
@@ -115,7 +117,33 @@ def equilibrium(v, run, tolerance):
            f"{abs(T.mean() / T_eq - 1):.2e} (the linearisation in B of a first step with c rho kappa_P dt >> 1; "
            "RBO24 eq. 47-48 trade this for the exact equilibrium at large dt)")
     v.check(T.max() < T0, f"D4 the matter cooled to heat the radiation: T = {T.max():.6g} K < T_0 = {T0:g} K")
+    T_replay = replay_equilibrium(rad, medium, snap.step)
+    worst_T = float(np.max(np.abs(T / T_replay - 1)))
+    bound_T = 10 * snap.step * rad["tolerance"]  # each step's solve is good to the solver's tolerance
+    v.check(worst_T <= bound_T, f"D4 T after {snap.step} steps against the steps of RBO24 eq. 47-49 replayed here: "
+            f"{T.max():.10g} K against {T_replay:.10g} K, relative {worst_T:.2e} (<= 10 x steps x tolerance = "
+            f"{bound_T:.1e})")
     return snap, T_eq
+
+
+def replay_equilibrium(rad, medium, steps):
+    """T after `steps` backward-Euler steps of a uniform medium (no fluxes), RBO24 eq. 47-49 as written: with
+    u_b = c E^b, a_b = c dt rho kappa_P^b, f^b at T_n and C = rho c_V / (16 sigma T_n^3), eq. 49 gives
+    u_b' = (u_b + a_b f^b B') / (1 + a_b), and eq. 48, C (B' - B_n) / dt = sum_b rho kappa_P^b (u_b' - f^b B'),
+    then B' in closed form; T_n+1 = (B' / 4 sigma)^(1/4)."""
+    nb, dt, rho = rad["bands"], medium["dt"], medium["rho"]
+    edges = np.logspace(np.log10(rad["lambda_min"]), np.log10(rad["lambda_max"]), nb + 1)
+    k = rho * np.asarray(medium["kappa_planck"], float)
+    a = C_LIGHT * dt * k
+    T, u = float(medium["T_init"]), np.zeros(nb)
+    for _ in range(steps):
+        f = np.array([band_fraction(0.0 if b == 0 else edges[b], 0.0 if b == nb - 1 else edges[b + 1], T)
+                      for b in range(nb)])
+        C = medium["heat_capacity"] / (16 * SIGMA_SB * T ** 3)
+        B = (C / dt * 4 * SIGMA_SB * T ** 4 + np.sum(k * u / (1 + a))) / (C / dt + np.sum(k * f / (1 + a)))
+        u = (u + a * f * B) / (1 + a)
+        T = (B / (4 * SIGMA_SB)) ** 0.25
+    return T
 
 
 def plot_diffusion(path, panels, errors, cells):

@@ -2,7 +2,8 @@
 """fld_benchmarks (VALIDATION D3, D4) end to end: the D3 deck at 24, 48 and 96
 cells per direction with dt ~ h^2 (8, 32, 128 steps) through check.py's
 orders (>= 1.8) and finest error (<= 5e-3); the D4 deck through check.py's
-equilibrium (1e-6) and linearised energy; a D4 run stopped after 10 steps and
+equilibrium (1e-6), linearised energy and T against the backward-Euler steps
+replayed in check.py; a D4 run stopped after 10 steps and
 restarted ends bit-identical in T and every band's E; and a kappa_planck of
 the wrong length is refused before any output (exit 2).
 
@@ -39,7 +40,7 @@ full = os.path.join(work, "equilibrium")
 run([exe, deck, f"output.dir={full}"])
 c = run([sys.executable, check_py, "equilibrium", full], expect=None)
 print(c.stdout.strip())
-checks.check(c.returncode == 0 and "3 passed, 0 failed" in c.stdout, "D4: check.py equilibrium passes")
+checks.check(c.returncode == 0 and "4 passed, 0 failed" in c.stdout, "D4: check.py equilibrium passes")
 
 split = os.path.join(work, "equilibrium_split")
 run([exe, deck, f"output.dir={split}", "run.max_steps=10"])
