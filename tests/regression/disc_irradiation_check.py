@@ -32,8 +32,9 @@ shutil.rmtree(out_dir, ignore_errors=True)
 run([exe, deck, f"output.dir={out_dir}"])
 out = irradiation.analyse(out_dir)
 checks.check(out["cells_thin"] == out["cells"], f"every cell optically thin ({out['cells_thin']} of {out['cells']})")
-checks.check(out["max_error_thin"] <= irradiation.THRESHOLD,
-             f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {irradiation.THRESHOLD}")
+# VALIDATION D2 allows 1 % (check.py's threshold); measured 3.9e-4 and 2.2e-4: held at 1e-3.
+D2_BOUND = 1e-3
+checks.check(out["max_error_thin"] <= D2_BOUND, f"D2: max |T / T_thin - 1| = {out['max_error_thin']:.3e} <= {D2_BOUND}")
 checks.check(abs(out["energy_balance"]) <= BALANCE,
              f"open-side luminosity / absorbed - 1 = {out['energy_balance']:.3e} (|.| <= {BALANCE})")
 
@@ -43,8 +44,8 @@ strat_dir = os.path.join(work, "stratified")
 shutil.rmtree(strat_dir, ignore_errors=True)
 run([exe, deck, f"output.dir={strat_dir}", "irradiation.p=-2.25", "irradiation.h=0.05"])
 strat = irradiation.analyse(strat_dir)
-checks.check(strat["cells_thin"] == strat["cells"] and strat["max_error_thin"] <= irradiation.THRESHOLD,
-             f"stratified disc: max |T / T_thin - 1| = {strat['max_error_thin']:.3e} <= {irradiation.THRESHOLD} "
+checks.check(strat["cells_thin"] == strat["cells"] and strat["max_error_thin"] <= D2_BOUND,
+             f"stratified disc: max |T / T_thin - 1| = {strat['max_error_thin']:.3e} <= {D2_BOUND} "
              f"in {strat['cells_thin']} of {strat['cells']} cells")
 checks.check(abs(strat["energy_balance"]) <= BALANCE,
              f"stratified disc: open-side luminosity / absorbed - 1 = {strat['energy_balance']:.3e} "

@@ -119,7 +119,7 @@ TEST(DiscTemperature, ThinDiscReachesTheD2LimitAndTheGasAndDustFollowIt) {
       const double expected = rho_m * a / (rho(i, j) * run.units.density() * std::sqrt(8.0 / M_PI) * cs);
       worst_ts = std::fmax(worst_ts, std::fabs(ts(i, j, 0) * run.units.time / expected - 1.0));
     }
-  EXPECT_LE(worst_T, 1e-2) << "D2 in the coupled disc";
+  EXPECT_LE(worst_T, 2e-3) << "D2 in the coupled disc";  // measured 6.3e-4 (VALIDATION D2: 1 %)
   EXPECT_LE(worst_ts, 1e-12) << "stopping times from the solver's temperature";
   std::printf("coupled D2: max |T / T_thin - 1| = %.2e; stopping times %.2e\n", worst_T, worst_ts);
 

@@ -147,7 +147,7 @@ TEST(IrradiationD2, OpticallyThinGreyGrainsReachTheBlackbodyTemperature) {
             << "; open-side luminosity / absorbed - 1 = " << balance << "\n";
   EXPECT_LE(std::fabs(balance), 1e-6);
   EXPECT_GE(relaxation.iterations, solves);  // every solve iterated at least once from T = 100 K, E = 0
-  EXPECT_LE(worst, 0.01);
+  EXPECT_LE(worst, 1e-3);                    // measured 2.2e-4 (VALIDATION D2: 1 %)
   // The per-solve history the log prints: one change per solve, the last within the target.
   ASSERT_EQ(relaxation.changes.size(), static_cast<std::size_t>(solves));
   ASSERT_EQ(relaxation.solve_iterations.size(), static_cast<std::size_t>(solves));
