@@ -4,9 +4,9 @@ problems/disc_passive/check.py.
 
 usage: pinte_check.py EXE WORKDIR ci|full
 
-ci:   pinte_low.toml on a 60 x 40 grid (10 inner cells) with its 20 bands:
-      energy balance, dust mass, the optically thin top row, the super-heated
-      layer; pinte_high.toml's dust mass at set-up (t_end = 0).
+ci:   pinte_low.toml and pinte_high.toml on a 60 x 40 grid (10 inner cells)
+      with their 20 bands: energy balance, dust mass, the optically thin top
+      row, the super-heated layer.
 full: both decks at their resolution and at 1.5x it, two runs at a time:
       every check of check.py with --compare, and the figure in the style of
       RBO24 Fig. 9 (WORKDIR/pinte.png).
@@ -85,13 +85,11 @@ if mode == "ci":
     coarse = fresh("low_coarse")
     run([exe, *deck("low"), f"output.dir={coarse}", "grid.nr=60", "grid.r_block_cells=10", "grid.ntheta=40"])
     check_run("low", coarse, ci_thin=2e-3)
-    high = fresh("high_setup")
-    run([exe, *deck("high"), f"output.dir={high}", "run.t_end=0"])
-    hist = passive.mote.read_history(os.path.join(high, "history.txt"))
-    snap = passive.mote.last_snapshot(high)
-    mass = 4.0 * 3.141592653589793 * hist["dust_mass"][0] * snap.units["mass_g"] / passive.M_EARTH
-    checks.check(abs(mass / MASSES["high"] - 1.0) <= passive.MASS,
-                 f"high: dust mass at set-up {mass:.4e} M_earth against 10 (|ratio - 1| <= {passive.MASS:g})")
+    # The high-mass disc solved on the same grid (3 s). The 1.5x-resolution rows stay in the full
+    # mode: on these grids the mid-plane still moves by 4.6 % (low mass, 60 x 40 against 90 x 60).
+    high = fresh("high_coarse")
+    run([exe, *deck("high"), f"output.dir={high}", "grid.nr=60", "grid.r_block_cells=10", "grid.ntheta=40"])
+    check_run("high", high, ci_thin=2e-3)
 else:
     runs = {name: (fresh(name), fresh(f"{name}_fine")) for name in ("low", "high")}
     # Two at a time (each run is one process on one core): the two decks, then their 1.5x grids.
