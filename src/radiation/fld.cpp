@@ -655,4 +655,27 @@ double FldSolver::open_boundary_luminosity(const FldState& state) const {
   return grid_.comm().sum(total);
 }
 
+FldSolver::FaceFluxes FldSolver::face_fluxes(const FldState& state, int b) const {
+  if (b < 0 || b >= nb_) throw std::invalid_argument("radiation: no band " + std::to_string(b));
+  const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
+  const int ng = map.ng, nr = map.nr, nt = map.nt;
+  FaceFluxes F{RealView2("radiation::F_radial", nr + 1, nt), RealView2("radiation::F_theta", nr, nt + 1)};
+  const auto E = state.E;
+  const auto E_ext = E_ext_;
+  const auto coef = coef_[b];
+  const auto AR = grid_.AR, AZ = grid_.AZ;
+  const auto value = [=] KOKKOS_FUNCTION(int i, int j) { return map.value_E(E, E_ext, i, j, b); };
+  par_for(
+      "radiation::fld_radial_face_flux", 0, nr + 1, 0, nt, KOKKOS_LAMBDA(int f, int j) {
+        const bool reflecting = (f == 0 && map.reflect_inner) || (f == nr && map.reflect_outer);
+        F.radial(f, j) = reflecting ? 0.0 : coef.radial_flux(value, ng + f, ng + j) / AR(ng + f, ng + j);
+      });
+  par_for(
+      "radiation::fld_theta_face_flux", 0, nr, 0, nt + 1, KOKKOS_LAMBDA(int i, int f) {
+        const bool reflecting = (f == 0 && map.reflect_lower) || (f == nt && map.reflect_upper);
+        F.theta(i, f) = reflecting ? 0.0 : coef.theta_flux(value, ng + i, ng + f) / AZ(ng + i, ng + f);
+      });
+  return F;
+}
+
 }  // namespace mote::radiation

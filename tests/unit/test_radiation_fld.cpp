@@ -7,7 +7,7 @@
 //       equilibrium, f^b(T) B(T) = c E^b in every band to 1e-6, and each step
 //       conserves the linearised energy sum V [C (B' - B) + sum_b (E' - E)];
 //   the Kley limiter: 1/3 in the thick limit, lambda R <= 1 (|F| <= c E) and
-//   -> 1 in the thin limit; Planck band fractions against quadrature, in
+//   -> 1 in the thin limit, and on a solved thin field the face fluxes; Planck band fractions against quadrature, in
 //   the Wien tail to 1e-10 relative.
 #include <gtest/gtest.h>
 
@@ -486,6 +486,81 @@ TEST(FldD3, ThickDiffusionOfAGaussianConvergesAtSecondOrder) {
   EXPECT_GE(p1, 1.8);
   EXPECT_GE(p2, 1.8);
   EXPECT_LE(e3, 5e-3);
+}
+
+/// D3's thin limit on a solved field: a block of heated cells in a medium
+/// optically thin over the grid (rho kappa = 1e-17 / cm, 1e14-2e14 cm), open to
+/// a 10 K field on three sides, mirrored at the mid-plane, in its steady state.
+/// The flux of the linear system (FldSolver::face_fluxes) against c E of the
+/// larger of a face's two sides (free streaming, eq. 42-43): below it through
+/// every face away from the heated block, and reaching it there (the bound
+/// binds: the unlimited diffusion flux c |grad E| / 3 rho kappa_R would exceed
+/// it by three orders). On the block's faces, where E has a kink, the cell's
+/// R of eq. 43 takes the central difference over two cells, about half the
+/// face's, and the face flux exceeds c E by a tenth (1.11): the cell-centred
+/// limiter of RBO24 (and cuDisc) bounds the cells' fluxes, not the faces'.
+TEST(FldD3, ThinMediumFluxStaysBelowFreeStreaming) {
+  mesh::GridSpec spec = disc_patch();
+  spec.nr = 16;
+  spec.ntheta = 12;
+  spec.r_edges = mesh::log_edges(1e14, 2e14, spec.nr);
+  spec.theta_edges = mesh::linear_edges(0.0, 0.3, spec.ntheta);
+  const mesh::Grid grid(spec, core::Comm::world());
+  FldSettings settings = reflecting({1e-4, 1.0}, 1e-10);
+  settings.boundaries.inner = settings.boundaries.outer = settings.boundaries.upper = RadiationBoundary::Open;
+  settings.boundaries.T_ext = 10.0;
+  FldSolver fld(grid, settings, radiation::RadiationConstants::in(units::UnitSystem::cgs_units()));
+  auto fields = fld.make_fields();
+  const double chi = 1e-17;
+  fill(fields.heat_capacity, 1e-8);
+  fill(fields.absorption, chi);
+  fill(fields.extinction, chi);
+  fill(fields.scattering_source, 0.0);
+  const int ng = grid.ng, nr = grid.nr, nt = grid.nt;
+  const auto heated = [](int i, int j) { return i >= 6 && i < 9 && j >= 0 && j < 3; };  // active indices
+  auto heating = Kokkos::create_mirror_view(fields.heating);
+  Kokkos::deep_copy(heating, 0.0);
+  for (int i = 0; i < nr; ++i)
+    for (int j = 0; j < nt; ++j) heating(ng + i, ng + j) = heated(i, j) ? 1e-10 : 0.0;
+  Kokkos::deep_copy(fields.heating, heating);
+  auto state = fld.make_state();
+  fill(state.T, 10.0);
+  fld.equilibrate_radiation(state);
+  const auto relaxed = fld.relax_to_steady_state(fields, state, 1e-7, 60);
+  const auto F = fld.face_fluxes(state, 0);
+  const auto Fr = snapshot(F.radial), Ft = snapshot(F.theta);
+  const auto E = snapshot(state.E);
+  const auto Zc = snapshot(grid.Zc);
+  const auto AZ = snapshot(grid.AZ);
+  const double c = fld.constants().c;
+  double away = 0.0, block = 0.0, unlimited = 0.0, power_out = 0.0;
+  // An interior face between active cells a and b, `distance` apart.
+  const auto face = [&](double flux, int ia, int ja, int ib, int jb, double distance) {
+    const double e_a = E(ng + ia, ng + ja, 0), e_b = E(ng + ib, ng + jb, 0), scale = c * std::max(e_a, e_b);
+    double& worst = heated(ia, ja) || heated(ib, jb) ? block : away;
+    worst = std::max(worst, std::fabs(flux) / scale);
+    unlimited = std::max(unlimited, c / (3.0 * chi) * std::fabs(e_b - e_a) / distance / scale);
+  };
+  for (int i = 1; i < nr; ++i)
+    for (int j = 0; j < nt; ++j) face(Fr(i, j), i - 1, j, i, j, grid.Rc_h(ng + i) - grid.Rc_h(ng + i - 1));
+  for (int i = 0; i < nr; ++i) {
+    for (int j = 1; j < nt; ++j) face(Ft(i, j), i, j - 1, i, j, Zc(ng + i, ng + j) - Zc(ng + i, ng + j - 1));
+    power_out += Ft(i, nt) * AZ(ng + i, ng + nt);
+    EXPECT_EQ(Ft(i, 0), 0.0);  // the mirrored mid-plane carries none
+  }
+  std::cout << "D3 thin: " << relaxed.solves << " solves; max |F| / c max(E) through interior faces: " << away
+            << " away from the heated block, " << block << " on its faces; unlimited diffusion flux up to " << unlimited
+            << " c E\n";
+  EXPECT_LE(away, 1.0);
+  EXPECT_GE(away, 0.9);
+  EXPECT_LE(block, 1.15);
+  EXPECT_GE(unlimited, 100.0);
+  // The open sides' faces carry what open_boundary_luminosity sums.
+  const auto AR = snapshot(grid.AR);
+  for (int j = 0; j < nt; ++j) power_out += Fr(nr, j) * AR(ng + nr, ng + j) - Fr(0, j) * AR(ng, ng + j);
+  const double luminosity = fld.open_boundary_luminosity(state);
+  EXPECT_GT(luminosity, 0.0);
+  EXPECT_NEAR(power_out / luminosity, 1.0, 1e-12);
 }
 
 TEST(FldSettings, BadInputIsRefused) {

@@ -156,6 +156,18 @@ class FldSolver {
   /// that in a steady state it equals the power the sources put in.
   double open_boundary_luminosity(const FldState& state) const;
 
+  /// Flux density of band b (energy / area / time, eq. 41) through every face
+  /// of this rank's active cells, from the diffusion coefficients of the last
+  /// step and `state`'s E: the flux of the linear system, as
+  /// open_boundary_luminosity takes it. radial(i, j): the face at R^e of
+  /// active column i (0 .. nr), row j, along +R; theta(i, j): the face at
+  /// theta^e_j (0 .. nt) of column i, along (-sin, cos). 0 through reflecting sides.
+  struct FaceFluxes {
+    RealView2 radial;  // (nr + 1, nt)
+    RealView2 theta;   // (nr, nt + 1)
+  };
+  FaceFluxes face_fluxes(const FldState& state, int b) const;
+
   /// Planck factors f^b(T) at the active cells (nr_total, nt_total, nb) of the last step.
   const RealView3& planck_factors() const { return planck_; }
   /// External field E_ext^b at the open sides.
