@@ -90,8 +90,11 @@ coagulation::CallStatistics DiscCoagulation::update(const GasFields& gas, double
         v(c, s, 2) = W(i, j, s, kVphi) * uv;
       });
   const auto stats = solver_.integrate(density_, elapsed * ut, coagulation::make_kernel(settings_, mass_grid_, cells_));
-  if (stats.failed_cells > 0)
-    throw core::NumericalError(logging::cat("disc coagulation failed in ", stats.failed_cells,
+  // Summed over the ranks: every rank throws together (a rank that went on would
+  // wait in set_next_interval's collective for the others).
+  const long long failed = grid_.comm().sum(static_cast<long long>(stats.failed_cells));
+  if (failed > 0)
+    throw core::NumericalError(logging::cat("disc coagulation failed in ", failed,
                                             " cells (coagulation.max_substeps reached or vanishing sub-step)"));
   par_for(
       "disc::coagulation_store", 0, cells, 0, ns, KOKKOS_LAMBDA(int c, int s) {
