@@ -367,6 +367,8 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
       file.write_attribute("/", "dt", s.dt);
       file.write_attribute("/", "next_output", static_cast<std::int64_t>(s.next_output));
       file.write_attribute("/", "snapshot_count", static_cast<std::int64_t>(s.snapshot_count));
+      file.write_attribute("/", "history_pending", static_cast<std::int64_t>(s.history_pending));
+      file.write_attribute("/", "snapshot_pending", static_cast<std::int64_t>(s.snapshot_pending));
       file.write_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
       file.create_group("/state");
       sim.save_state(file);
@@ -429,6 +431,11 @@ std::string RunLoop::restore_checkpoint(Simulation& sim, State& s, const std::st
   // t_end would otherwise skip). A restart at or past t_end does not step (run()).
   s.next_output = first_output_after(s.time);
   s.snapshot_count = file.read_attribute_int("/", "snapshot_count");
+  const auto pending = [&](const char* name) {
+    return file.has_attribute("/", name) && file.read_attribute_int("/", name);
+  };
+  s.history_pending = pending("history_pending");
+  s.snapshot_pending = pending("snapshot_pending");
   s.next_checkpoint = std::max<long long>(index_of(path), 0) + 1;
   sim.load_state(file);
   return file.has_attribute("/", "run_id") ? file.read_attribute_string("/", "run_id") : "";
@@ -483,7 +490,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   if (settings_.phantom_dumps) phantom_source(sim).check_phantom_dump();  // before output.dir is touched
   const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
   run_id_ = directory.run_id();
-  if (restart && no_steps_left(s)) return report_nothing_left(s);
+  if (restart && no_steps_left(s) && !s.history_pending && !s.snapshot_pending) return report_nothing_left(s);
   const long long start_step = s.step;
   try {
     return run_steps(sim, s, restart.has_value(), wall_start);
@@ -507,6 +514,25 @@ int RunLoop::report_nothing_left(const State& s) const {
   return finished ? core::kExitFinished : core::kExitStepLimit;
 }
 
+void RunLoop::record_history(const Simulation& sim, State& s, HistoryFile& history) {
+  history.record(s.step, s.time, s.dt, sim.diagnostics());
+  s.history_pending = false;
+}
+
+void RunLoop::write_pending_snapshot(Simulation& sim, State& s) {
+  write_snapshot(sim, s);
+  s.snapshot_pending = false;
+}
+
+bool RunLoop::write_pending_output(Simulation& sim, State& s, HistoryFile& history) {
+  const bool snapshot = s.snapshot_pending;
+  if (s.history_pending || snapshot)
+    logging::info("writing the output of step ", s.step, " that a failed write left out before the checkpoint");
+  if (s.history_pending) record_history(sim, s, history);
+  if (snapshot) write_pending_snapshot(sim, s);
+  return snapshot;
+}
+
 int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_start) {
   HistoryFile history((std::filesystem::path(settings_.output_dir) / "history.txt").string(), comm_, run_id_,
                       restarting ? s.step : -1);
@@ -518,8 +544,9 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
     write_snapshot(sim, s);
     s.next_output = 1;
   }
-  double last_progress = wall_now(), last_checkpoint = wall_now();
   bool snapshot_current = !restarting;
+  if (restarting) snapshot_current = write_pending_output(sim, s, history);
+  double last_progress = wall_now(), last_checkpoint = wall_now();
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
@@ -557,9 +584,11 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
         (settings_.checkpoint_wall > 0 && comm_.max(wall_now() - last_checkpoint) >= settings_.checkpoint_wall);
     const bool check_due = s.step % settings_.nan_check_every == 0;
     if ((check_due || at_snapshot || checkpoint_due) && report_non_finite(sim, s)) return core::kExitNonFinite;
-    if (s.step % settings_.history_every == 0) history.record(s.step, s.time, s.dt, sim.diagnostics());
+    s.history_pending = s.step % settings_.history_every == 0;
+    s.snapshot_pending = at_snapshot;
+    if (s.history_pending) record_history(sim, s, history);
     if (at_snapshot) {
-      write_snapshot(sim, s);
+      write_pending_snapshot(sim, s);
       s.next_output += 1;
       snapshot_current = true;
     }
@@ -575,7 +604,10 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   }
   const bool finished = s.time >= t_end;
   if (report_non_finite(sim, s)) return core::kExitNonFinite;
-  if (!snapshot_current) write_snapshot(sim, s);
+  if (!snapshot_current) {
+    s.snapshot_pending = true;
+    write_pending_snapshot(sim, s);
+  }
   write_checkpoint(sim, s);
   progress(sim, s, start_time, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;

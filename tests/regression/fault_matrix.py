@@ -13,6 +13,8 @@ and checksums of the files that must not change:
     and restartable;
   * history.txt on a full disk (RLIMIT) and on /dev/full, the XDMF on /dev/full: exit 5 naming
     the file and the system error; the history keeps only complete rows;
+  * the restart from the checkpoint written after a failed snapshot or history row writes that
+    output first: every scheduled snapshot once, numbered in time order; a history row per step;
   * a small tmpfs filling up (only where this process may mount one, else skipped);
   * truncated, bit-flipped (in a state dataset, in the time attribute and in the stored deck)
     and NaN-holding checkpoints: --restart FILE refuses them (exit 2, naming the defect),
@@ -122,7 +124,27 @@ def full_disk_snapshot():
     checks.check(len(new) == 1, f"a checkpoint of the state was written before stopping ({new})")
     history_rows_complete("full disk during a snapshot", d)
     case("restart from that checkpoint", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], 0,
-         [f"restarted from {os.path.join(d, new[0]) if new else '?'}", "finished"])
+         [f"restarted from {os.path.join(d, new[0]) if new else '?'}", "that a failed write left out", "finished"])
+    with h5py.File(os.path.join(d, new[0])) as f:
+        t_failed = f.attrs["time"]
+    checks.check(os.path.exists(os.path.join(d, next_snapshot)) and snapshot_time(d, next_snapshot) == t_failed,
+                 f"the restart wrote the snapshot the full disk left out ({next_snapshot}, t = {t_failed})")
+    schedule_complete("full disk during a snapshot", d)
+
+
+def snapshot_time(d, name):
+    with h5py.File(os.path.join(d, name)) as f:
+        return float(f.attrs["time"])
+
+
+def schedule_complete(name, d):
+    """Snapshots numbered without a gap, in increasing time, one at every scheduled time k 0.1 to t_end = 0.4."""
+    names = files(d, "snapshot_")
+    times = [snapshot_time(d, n) for n in names]
+    numbered = names == [f"snapshot_{k:05d}.h5" for k in range(len(names))]
+    scheduled = all(any(abs(t - 0.1 * k) <= 1e-12 for t in times) for k in range(5))
+    checks.check(numbered and times == sorted(set(times)) and scheduled,
+                 f"{name}: every scheduled snapshot written once, numbered in time order ({len(names)}: {times})")
 
 
 def full_disk_everything():
@@ -149,6 +171,21 @@ def full_disk_history():
          skip=("history.txt",), limit=size + 250)
     history_rows_complete("full disk in the history", d)
     no_temporaries("full disk in the history", d)
+
+    # A limit above a checkpoint's size: the history row is lost, the checkpoint written before stopping
+    # records it, and the restart writes it before its first step.
+    d = fresh_run("disk_history_row")
+    ckpt = os.path.getsize(os.path.join(d, files(d, "checkpoint_")[-1]))
+    longer = ["run.t_end=1.2", "output.snapshot_dt=0", "output.checkpoint_every=0"]
+    case("full disk in the history, a checkpoint fits", [exe, "--restart", "latest", deck, *common,
+                                                         f"output.dir={d}", *longer], IO_ERROR,
+         ["File too large", "writing a checkpoint before stopping"], HDF5_NOISE[:2], limit=ckpt + 1500)
+    case("restart after the lost history row", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                                *longer], 0, ["that a failed write left out", "finished"])
+    with open(os.path.join(d, "history.txt")) as f:
+        steps = [int(l.split()[0]) for l in f if not l.startswith("#")]
+    checks.check(steps == list(range(steps[-1] + 1)) and steps[-1] > 80,
+                 f"restart after the lost history row: a row for every step 0-{steps[-1]}, the lost one written")
 
 
 def dev_full():

@@ -29,6 +29,8 @@
 
 namespace mote::io {
 
+class HistoryFile;
+
 struct RunSettings {
   double t_end = 0.0;
   double dt_min = 0.0;      // smallest allowed solver time-step (resolved: never 0 unless t_end is)
@@ -78,6 +80,10 @@ class RunLoop {
     long long next_output = 0;     // index of the next scheduled snapshot time
     long long snapshot_count = 0;  // number of snapshot files written (file numbering)
     long long next_checkpoint = 1;
+    // Output of this step not yet written (a write failed; the checkpoint written
+    // before stopping records it, and a restart writes it first).
+    bool history_pending = false;
+    bool snapshot_pending = false;
   };
   /// A restored state at or past run.t_end or run.max_steps: a restart has nothing to do.
   bool no_steps_left(const State& s) const;
@@ -85,6 +91,11 @@ class RunLoop {
   int report_nothing_left(const State& s) const;
   /// The time loop after the directory is claimed: history, snapshots, checkpoints.
   int run_steps(Simulation& sim, State& s, bool restarting, double wall_start);
+  /// The history row and the snapshot of the present step; each clears its pending flag once written.
+  void record_history(const Simulation& sim, State& s, HistoryFile& history);
+  void write_pending_snapshot(Simulation& sim, State& s);
+  /// On a restart: the output the checkpoint's step still owes; true if a snapshot was written.
+  bool write_pending_output(Simulation& sim, State& s, HistoryFile& history);
   /// The k-th scheduled output time (k >= 1; the final snapshot at t_end past the schedule).
   double output_time(long long k) const;
   /// The first k >= 1 with output_time(k) > t, or the final snapshot's index where t >= t_end.
