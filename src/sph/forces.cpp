@@ -38,18 +38,10 @@ void update_cullen_dehnen(Particles& p, const RealView1& divv_old, const SphConf
   const Real amin = cfg.alpha_min;
   par_for(
       "sph::cullen_dehnen", 0, p.n, KOKKOS_LAMBDA(int i) {
-        const Real ddivv = (divv(i) - divv_old(i)) / dt;
-        const Real A = (divv(i) < 0.0 && ddivv < 0.0) ? -ddivv : 0.0;
-        const Real h2a = h(i) * h(i) * A;
-        const Real aloc = amax * h2a / (h2a + cs(i) * cs(i));
-        Real al = alpha(i);
-        if (aloc >= al) {
-          al = aloc;
-        } else {
-          const Real tau = h(i) / (0.1 * cs(i));
-          al = aloc + (al - aloc) * math::exp(-dt / tau);
-        }
-        alpha(i) = al < amin ? amin : al;
+        const Real aloc = cullen_dehnen_alpha_loc((divv(i) - divv_old(i)) / dt, h(i), cs(i), amin, amax);
+        const Real al = alpha(i);
+        // where c_s = 0 alpha keeps its value (tau infinite)
+        alpha(i) = aloc >= al ? aloc : aloc + (al - aloc) * math::exp(-dt * 0.1 * cs(i) / h(i));
         divv_old(i) = divv(i);
       });
 }

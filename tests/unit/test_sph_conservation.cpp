@@ -9,6 +9,7 @@
 #include <random>
 
 #include "mote/setups/lattice.hpp"
+#include "mote/sph/forces.hpp"
 #include "mote/sph/sph_system.hpp"
 
 namespace {
@@ -84,6 +85,18 @@ TEST(SphConservation, MomentumAndEnergy2D) {
   // Second-order integrator: halving dt would reduce the drift by 4; measured 3.3
   // (order 1.7, docs/sph.md), asserted as order >= 1.58.
   EXPECT_GT(a.energy_drift / b.energy_drift, 3.0);
+}
+
+// Phantom's local viscosity (Price et al. 2018, eq. 40-41, xi = 1): 10 h^2 A / c_s^2
+// between alpha_min and alpha_max, A only where div v falls; alpha_min (not
+// 0 / 0) where c_s = 0.
+TEST(SphCullenDehnen, LocalViscosityAsPhantom) {
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-5.0, 0.1, 1.0, 0.0, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-5.0, 0.1, 2.0, 0.0, 1.0), 0.125);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-500.0, 0.1, 1.0, 0.0, 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(5.0, 0.1, 1.0, 0.02, 1.0), 0.02);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(0.0, 0.1, 0.0, 0.02, 1.0), 0.02);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-5.0, 0.1, 0.0, 0.0, 1.0), 0.0);
 }
 
 TEST(SphConservation, MomentumAndEnergy3DCullenDehnen) {

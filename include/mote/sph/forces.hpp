@@ -24,11 +24,21 @@ void update_eos(Particles& p, const SphConfig& cfg, const RealView1& u);
 void compute_forces(Particles& p, const NeighbourList& nl, const Box& box, const SphConfig& cfg, const RealView2& vel,
                     const RealView1& u);
 
-/// Cullen & Dehnen (2010) viscosity switch, simplified as in Phantom:
-/// A = max(-d(div v)/dt, 0) in converging flows, alpha_loc = alpha_max h^2 A /
-/// (h^2 A + c_s^2); alpha jumps up to alpha_loc and decays towards it on
-/// tau = h / (0.1 c_s), floored at alpha_min. divv_old holds div v of the
-/// previous step and is updated.
+/// The local viscosity of the Cullen & Dehnen (2010) switch as Phantom takes it
+/// (Price et al. 2018, eq. 40-41, without the shear limiter xi):
+/// alpha_loc = min(10 h^2 A / c_s^2, alpha_max), A = max(-d(div v)/dt, 0),
+/// at least alpha_min; alpha_min where c_s = 0 (cold gas, pressureless dust).
+KOKKOS_INLINE_FUNCTION Real cullen_dehnen_alpha_loc(Real ddivv_dt, Real h, Real cs, Real alpha_min, Real alpha_max) {
+  const Real source = 10.0 * h * h * math::fmax(-ddivv_dt, Real(0));
+  const Real cs2 = cs * cs;
+  if (!(cs2 > 0.0)) return alpha_min;
+  return math::fmax(math::fmin(source / cs2, alpha_max), alpha_min);
+}
+
+/// Cullen & Dehnen (2010) viscosity switch, simplified as in Phantom: alpha
+/// jumps up to cullen_dehnen_alpha_loc and decays towards it on tau = h /
+/// (0.1 c_s) (exactly over the step). divv_old holds div v of the previous step
+/// and is updated.
 void update_cullen_dehnen(Particles& p, const RealView1& divv_old, const SphConfig& cfg, Real dt);
 
 /// Number of neighbour pairs inside the kernel support max(R h_a, R h_b),
