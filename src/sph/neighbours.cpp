@@ -339,6 +339,8 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   const IntView1 nreverse = reuse(nl.work.nreverse, n, "sph::nreverse");
   Kokkos::deep_copy(nreverse, 0);
   const View<int*> offsets = reuse(nl.offsets, n + 1, "sph::neighbour_offsets");
+  if (nl.work.scan_total.data() == nullptr) nl.work.scan_total = View<long long>("sph::neighbour_scan_total");
+  const View<long long> scan_total = nl.work.scan_total;
   View<int*> neigh;
   View<unsigned char*> image;
   bool built = false;
@@ -349,13 +351,9 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
     // back; a segment that overflows sends the whole build to the exact
     // count-then-fill path below. The segments are then compacted.
     const View<int*> slack = reuse(nl.work.slack, n + 1, "sph::neighbour_slack");
-    Kokkos::parallel_scan(
-        "sph::neighbour_slack", Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, int& acc, bool final) {
-          if (final) slack(i) = acc;
-          if (i < n) acc += prev_counts(i) + prev_counts(i) / 4 + 8;
-        });
-    int total_slack = 0;
-    Kokkos::deep_copy(total_slack, Kokkos::subview(slack, n));
+    const int total_slack = scan_offsets(
+        "sph::neighbour_slack", n, slack, scan_total,
+        KOKKOS_LAMBDA(int i) { return static_cast<long long>(prev_counts(i)) + prev_counts(i) / 4 + 8; });
     const View<int*> sneigh = reuse(nl.work.slack_neigh, total_slack, "sph::neighbour_slack_list", true);
     const View<unsigned char*> simage = reuse(nl.work.slack_image, total_slack, "sph::neighbour_slack_images", true);
     const RealView1 pack = reuse(nl.work.cell_pack, static_cast<std::size_t>(kPack) * n, "sph::neighbour_cell_pack");
@@ -387,14 +385,9 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
         "sph::neighbour_overflow", 0, n,
         KOKKOS_LAMBDA(int a, int& c) { c += ngather(a) + nreverse(a) >= slack(a + 1) - slack(a) ? 1 : 0; }, overflow);
     if (overflow == 0) {
-      Kokkos::parallel_scan(
-          "sph::neighbour_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1),
-          KOKKOS_LAMBDA(int i, int& acc, bool final) {
-            if (final) offsets(i) = acc;
-            if (i < n) acc += ngather(i) + nreverse(i);
-          });
-      int total = 0;
-      Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
+      const int total = scan_offsets(
+          "sph::neighbour_offsets", n, offsets, scan_total,
+          KOKKOS_LAMBDA(int i) { return static_cast<long long>(ngather(i)) + nreverse(i); });
       neigh = reuse(nl.neigh, std::max(total, 1), "sph::neighbours", true);
       image = reuse(nl.image, std::max(total, 1), "sph::neighbour_images", true);
       const auto nb = neigh;
@@ -449,13 +442,9 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
           });
           ngather(a) = count;
         });
-    Kokkos::parallel_scan(
-        "sph::neighbour_offsets", Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, int& acc, bool final) {
-          if (final) offsets(i) = acc;
-          if (i < n) acc += ngather(i) + nreverse(i);
-        });
-    int total = 0;
-    Kokkos::deep_copy(total, Kokkos::subview(offsets, n));
+    const int total = scan_offsets(
+        "sph::neighbour_offsets", n, offsets, scan_total,
+        KOKKOS_LAMBDA(int i) { return static_cast<long long>(ngather(i)) + nreverse(i); });
     neigh = reuse(nl.neigh, std::max(total, 1), "sph::neighbours", true);
     image = reuse(nl.image, std::max(total, 1), "sph::neighbour_images", true);
     const auto nb = neigh;

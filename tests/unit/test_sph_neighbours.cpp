@@ -10,8 +10,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -199,4 +202,42 @@ TEST(SphNeighbours, SupportLargerThanTwoPeriodicBoxesThrows) {
   EXPECT_THROW(nl.build(c.p, c.box, KernelType::M4, 0.1), std::runtime_error);
 }
 
+/// Segment sizes from a View (a functor: the scan's count).
+struct ViewCount {
+  Kokkos::View<long long*, mote::MemSpace> c;
+  KOKKOS_INLINE_FUNCTION long long operator()(int i) const { return c(i); }
+};
+
+/// The exclusive scan of the counts in `counts` (n + 1 offsets); the total.
+std::pair<int, std::vector<int>> scan(const std::vector<long long>& counts) {
+  const int n = static_cast<int>(counts.size());
+  ViewCount count{Kokkos::View<long long*, mote::MemSpace>("counts", n)};
+  auto h = Kokkos::create_mirror_view(count.c);
+  for (int i = 0; i < n; ++i) h(i) = counts[i];
+  Kokkos::deep_copy(count.c, h);
+  Kokkos::View<int*, mote::MemSpace> offsets("offsets", n + 1);
+  const int total =
+      mote::sph::detail::scan_offsets("test::scan", n, offsets, Kokkos::View<long long, mote::MemSpace>("t"), count);
+  auto o = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), offsets);
+  return {total, std::vector<int>(o.data(), o.data() + n + 1)};
+}
+
 }  // namespace
+
+// The lists index their entries with int: a list beyond 2^31 - 1 entries
+// (about 10^7 particles with the 3D M6 kernel, which a large GPU holds) is
+// refused by its 64-bit total before an entry is written, not wrapped.
+TEST(SphNeighbours, ListsBeyondTheIntRangeAreRefused) {
+  const auto small = scan({3, 0, 5, 2});
+  EXPECT_EQ(small.first, 10);
+  EXPECT_EQ(small.second, (std::vector<int>{0, 3, 3, 8, 10}));
+  const long long most = std::numeric_limits<int>::max();
+  EXPECT_EQ(scan({most - 7, 7}).first, most);
+  try {
+    scan({1000000000, 1000000000, 1000000000});
+    ADD_FAILURE() << "a list of 3e9 entries was accepted";
+  } catch (const std::length_error& e) {
+    EXPECT_NE(std::string(e.what()).find("3000000000 entries exceeds the 32-bit index range"), std::string::npos)
+        << e.what();
+  }
+}

@@ -26,6 +26,9 @@
 #pragma once
 
 #include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "mote/core/kokkos_types.hpp"
 #include "mote/sph/box.hpp"
@@ -88,7 +91,8 @@ class NeighbourList {
   struct Work {
     View<int*> keys, ngather, nreverse, rfill, slack, moved_counts, slack_neigh, cell_fill, spare_counts;
     View<unsigned char*> slack_image;
-    RealView1 cell_pack;  ///< x and squared search radius per cell slot
+    RealView1 cell_pack;         ///< x and squared search radius per cell slot
+    View<long long> scan_total;  ///< a scan's total, summed in 64 bits
   } work;
 
  private:
@@ -98,5 +102,30 @@ class NeighbourList {
   int builds_ = 0;
   int exact_builds_ = 0;
 };
+
+namespace detail {
+/// offsets(i) = sum_{k < i} count(k) for i = 0 .. n (n + 1 entries): the
+/// exclusive scan of a list's segment sizes. Returns the total; throws
+/// std::length_error where it exceeds the int index range of the lists (about
+/// 10^7 particles with the 3D M6 kernel): summed in 64 bits, so it is found
+/// before any entry is written.
+template <class Count>
+int scan_offsets(const char* name, int n, const View<int*>& offsets, const View<long long>& total, Count count) {
+  Kokkos::parallel_scan(
+      name, Kokkos::RangePolicy<ExecSpace>(0, n + 1), KOKKOS_LAMBDA(int i, long long& acc, bool final) {
+        if (final) {
+          offsets(i) = static_cast<int>(acc);  // meaningful only if the total fits
+          if (i == n) total() = acc;
+        }
+        if (i < n) acc += count(i);
+      });
+  long long sum = 0;
+  Kokkos::deep_copy(sum, total);
+  if (sum > std::numeric_limits<int>::max())
+    throw std::length_error(std::string(name) + ": a neighbour list of " + std::to_string(sum) +
+                            " entries exceeds the 32-bit index range (2^31 - 1): fewer particles per device");
+  return static_cast<int>(sum);
+}
+}  // namespace detail
 
 }  // namespace mote::sph
