@@ -20,6 +20,7 @@
 
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
+#include "mote/io/output_files.hpp"
 
 namespace mote::io {
 
@@ -187,7 +188,7 @@ std::vector<unsigned char> pack_block(const Block& block, size_t element_size, c
 /// HDF5's in-memory driver grows its image in steps of this many bytes.
 constexpr size_t kCoreIncrement = size_t(1) << 20;
 
-/// Writes `size` bytes to `path` (created or truncated) with checked POSIX calls; on failure
+/// Writes `size` bytes to `path` (created or truncated) with checked POSIX calls and syncs them; on failure
 /// removes the partial file and throws a core::IOError with the system error.
 void write_bytes(const std::string& path, const char* data, size_t size) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -199,6 +200,13 @@ void write_bytes(const std::string& path, const char* data, size_t size) {
     if (n == 0) errno = EIO;  // no progress and no error: not expected from a regular file
     if (n <= 0) break;
     done += static_cast<size_t>(n);
+  }
+  if (done == size) {
+    const int sync_errno = sync_file(fd);
+    if (sync_errno != 0) {
+      done = 0;
+      errno = sync_errno;
+    }
   }
   const int write_errno = errno;
   const bool closed = ::close(fd) == 0;

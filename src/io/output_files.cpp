@@ -1,6 +1,9 @@
 // Output directory and atomic file commits (see include/mote/io/output_files.hpp).
 #include "mote/io/output_files.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -33,10 +36,27 @@ void create_directory(const std::string& dir, const core::Comm& comm) {
 
 std::string temporary_name(const std::string& final_path) { return final_path + ".tmp"; }
 
+int sync_file(int fd) {
+  if (::fsync(fd) == 0) return 0;
+  const int e = errno;
+  return (e == EIO || e == ENOSPC || e == EDQUOT) ? e : 0;
+}
+
+void sync_directory_of(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  const int fd = ::open(parent.empty() ? "." : parent.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void commit_file(const std::string& final_path, const core::Comm& comm) {
   comm.barrier();
   int ok = 1;
-  if (comm.is_root()) ok = std::rename(temporary_name(final_path).c_str(), final_path.c_str()) == 0 ? 1 : 0;
+  if (comm.is_root()) {
+    ok = std::rename(temporary_name(final_path).c_str(), final_path.c_str()) == 0 ? 1 : 0;
+    if (ok) sync_directory_of(final_path);
+  }
   ok = comm.broadcast(ok);
   if (!ok) throw core::IOError("cannot rename '" + temporary_name(final_path) + "' to '" + final_path + "'");
 }
@@ -58,7 +78,12 @@ void write_text_file(const std::string& path, const std::string& text) {
   std::FILE* out = std::fopen(tmp.c_str(), "w");
   if (!out) throw core::IOError("cannot create '" + tmp + "': " + std::strerror(errno));
   errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() && std::fflush(out) == 0;
+  bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() && std::fflush(out) == 0;
+  if (written) {
+    const int sync_errno = sync_file(::fileno(out));
+    written = sync_errno == 0;
+    if (!written) errno = sync_errno;
+  }
   const int write_errno = errno;
   const bool closed = std::fclose(out) == 0;
   if (!written || !closed) {
@@ -71,6 +96,7 @@ void write_text_file(const std::string& path, const std::string& text) {
     std::remove(tmp.c_str());
     throw core::IOError("cannot rename '" + tmp + "' to '" + path + "': " + std::strerror(saved));
   }
+  sync_directory_of(path);
 }
 
 std::string numbered_path(const std::string& dir, const std::string& stem, long long index, const std::string& ext) {

@@ -16,6 +16,13 @@ void create_directory(const std::string& dir, const core::Comm& comm);
 
 /// Name under which a file is written before it is committed.
 std::string temporary_name(const std::string& final_path);
+/// fsync(fd): the file's bytes on the storage before it is renamed into place
+/// and an older checkpoint is deleted. Returns 0, or errno where the storage
+/// reports a write error (EIO, ENOSPC, EDQUOT); file systems that cannot sync
+/// (EINVAL, EROFS, ENOTSUP) count as done.
+int sync_file(int fd);
+/// fsync of the directory holding `path`: its renames on the storage (best effort).
+void sync_directory_of(const std::string& path);
 
 /// Renames temporary_name(final_path) to final_path on rank 0 (atomic on POSIX);
 /// every rank waits.
