@@ -297,6 +297,27 @@ void write_text_on_root(const std::string& path, const std::string& text, const 
   throw core::PeerIOError("rank 0 could not write '" + path + "'");
 }
 
+/// Moves the checkpoints numbered after `restored` and the snapshot files
+/// numbered from `first_snapshot` on, with a copy of history.txt, into
+/// dir/superseded_<restored>; says what moved (empty where nothing did).
+std::string move_later_outputs(const std::string& dir, long long restored, long long first_snapshot) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> later;
+  for (const auto& f : numbered_files(dir, "checkpoint", "h5"))
+    if (index_of(f) > restored) later.push_back(f);
+  for (const char* ext : {"h5", "xmf", "phantom"})
+    for (const auto& f : numbered_files(dir, "snapshot", ext))
+      if (index_of(f) >= first_snapshot) later.push_back(f);
+  if (later.empty()) return "";
+  const fs::path aside = fs::path(dir) / logging::format("superseded_%05lld", restored);
+  fs::create_directories(aside);
+  for (const auto& f : later) fs::rename(f, aside / fs::path(f).filename());
+  const fs::path history = fs::path(dir) / "history.txt";
+  if (fs::exists(history)) fs::copy_file(history, aside / "history.txt", fs::copy_options::overwrite_existing);
+  return logging::cat(later.size(), " files numbered after it (checkpoints and snapshots of the continuation it had) ",
+                      "and a copy of history.txt moved to ", aside.string());
+}
+
 }  // namespace
 
 void RunLoop::write_snapshot(Simulation& sim, State& s) {
@@ -491,6 +512,7 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
   const RunDirectory directory(settings_.output_dir, settings_.overwrite, source, comm_);
   run_id_ = directory.run_id();
   if (restart && no_steps_left(s) && !s.history_pending && !s.snapshot_pending) return report_nothing_left(s);
+  if (restart) set_aside_later_outputs(s);
   const long long start_step = s.step;
   try {
     return run_steps(sim, s, restart.has_value(), wall_start);
@@ -498,6 +520,24 @@ int RunLoop::run(Simulation& sim, const std::optional<std::string>& restart) {
     if (s.step > start_step) checkpoint_after_write_error(sim, s);
     throw;
   }
+}
+
+void RunLoop::set_aside_later_outputs(const State& s) const {
+  std::string moved, error;
+  if (comm_.is_root()) {
+    try {
+      moved = move_later_outputs(settings_.output_dir, s.next_checkpoint - 1, s.snapshot_count);
+    } catch (const std::filesystem::filesystem_error& e) {
+      error = std::string("cannot set aside the outputs after the checkpoint: ") + e.what();
+    }
+  }
+  if (comm_.broadcast(error.empty() ? 0 : 1) != 0) {
+    if (comm_.is_root()) throw core::IOError(error);
+    throw core::PeerIOError("rank 0 could not set aside the outputs after the checkpoint");
+  }
+  if (!moved.empty())
+    logging::warn("restarting from an earlier checkpoint than the directory's latest: ", moved,
+                  "; this run writes its own in their place");
 }
 
 bool RunLoop::no_steps_left(const State& s) const {

@@ -15,6 +15,8 @@ and checksums of the files that must not change:
     the file and the system error; the history keeps only complete rows;
   * the restart from the checkpoint written after a failed snapshot or history row writes that
     output first: every scheduled snapshot once, numbered in time order; a history row per step;
+  * a restart from a checkpoint older than the newest sets the later checkpoints and snapshots
+    aside (superseded_NNNNN/), so that --restart latest continues it, and ends as the first run;
   * a small tmpfs filling up (only where this process may mount one, else skipped);
   * truncated, bit-flipped (in a state dataset, in the time attribute and in the stored deck)
     and NaN-holding checkpoints: --restart FILE refuses them (exit 2, naming the defect),
@@ -327,6 +329,39 @@ def changed_decks():
          ["--force: restart changes transport.vx = 1.0 in the checkpoint, 2.0 now", "finished"])
 
 
+def datasets(path):
+    """Every dataset of an HDF5 file as bytes, by name."""
+    out = {}
+    with h5py.File(path) as f:
+        f.visititems(lambda name, obj: out.__setitem__(name, obj[...].tobytes())
+                     if isinstance(obj, h5py.Dataset) else None)
+    return out
+
+
+def earlier_checkpoint():
+    """A restart from a checkpoint older than the newest sets the later outputs aside, so that the next
+    --restart latest continues the new run (not the one it replaced), which ends as the first did."""
+    d = os.path.join(work, "earlier")
+    run([exe, deck, *common, f"output.dir={d}"], cwd=work)
+    old_checkpoints, old_snapshots = files(d, "checkpoint_"), files(d, "snapshot_")
+    final_first = datasets(os.path.join(d, old_snapshots[-1]))
+    with h5py.File(os.path.join(d, "checkpoint_00002.h5")) as f:
+        step, count = int(f.attrs["step"]), int(f.attrs["snapshot_count"])
+    aside = os.path.join(d, "superseded_00002")
+    case("restart from an earlier checkpoint", [exe, "--restart", os.path.join(d, "checkpoint_00002.h5"), deck,
+                                                *common, f"output.dir={d}", f"run.max_steps={step + 2}"], 0,
+         ["restarting from an earlier checkpoint than the directory's latest", aside])
+    moved = sorted(os.listdir(aside)) if os.path.isdir(aside) else []
+    later = [f for f in old_checkpoints if int(f[11:16]) > 2] + [f for f in old_snapshots if int(f[9:14]) >= count]
+    checks.check(all(f in moved for f in later) and "history.txt" in moved,
+                 f"the {len(later)} later checkpoints and snapshots and a copy of history.txt set aside")
+    case("--restart latest after it", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], 0,
+         [f"restarted from {os.path.join(d, 'checkpoint_00003.h5')} at step {step + 2}", "finished"])
+    final = datasets(os.path.join(d, files(d, "snapshot_")[-1]))
+    checks.check(final.keys() == final_first.keys() and all(final[k] == final_first[k] for k in final),
+                 f"the continued run ends as the first did, bit for bit ({len(final)} datasets)")
+
+
 def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
@@ -337,6 +372,7 @@ def main():
     small_tmpfs()
     damaged_checkpoints()
     changed_decks()
+    earlier_checkpoint()
     shutil.rmtree(work, ignore_errors=True)
     return checks.finish()
 

@@ -17,7 +17,7 @@ def checksums(directory, skip=()):
     sums = {}
     for name in sorted(os.listdir(directory)):
         path = os.path.join(directory, name)
-        if name not in skip and not os.path.islink(path):
+        if name not in skip and os.path.isfile(path) and not os.path.islink(path):
             with open(path, "rb") as f:
                 sums[name] = hashlib.sha256(f.read()).hexdigest()
     return sums

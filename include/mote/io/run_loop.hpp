@@ -85,6 +85,12 @@ class RunLoop {
     bool history_pending = false;
     bool snapshot_pending = false;
   };
+  /// A restart from a checkpoint older than the directory's newest: the
+  /// checkpoints and snapshots numbered after it (the abandoned continuation)
+  /// and a copy of history.txt go to superseded_NNNNN/, so that a later
+  /// `--restart latest` continues this run, not that one (rank 0; filesystem
+  /// errors are I/O errors, exit 5).
+  void set_aside_later_outputs(const State& s) const;
   /// A restored state at or past run.t_end or run.max_steps: a restart has nothing to do.
   bool no_steps_left(const State& s) const;
   /// Says so and returns the exit code of a run that ended there; nothing is written.
