@@ -58,6 +58,8 @@ void StandaloneCells::save_state(io::H5File& file) const {
   file.write("/state/next_substep", io::Block::whole({nc}), h.data());
   file.write_attribute("/state", "elapsed", elapsed_);
   file.write_attribute("/state", "initial_total", total0_);
+  file.write_attribute("/state", "substeps", static_cast<std::int64_t>(substeps_));
+  file.write_attribute("/state", "rejections", static_cast<std::int64_t>(rejections_));
 }
 
 void StandaloneCells::load_state(const io::H5File& file) {
@@ -67,6 +69,12 @@ void StandaloneCells::load_state(const io::H5File& file) {
   file.read("/state/next_substep", io::Block::whole({hsize_t(cells_)}), next.data());
   elapsed_ = file.read_attribute_real("/state", "elapsed");
   total0_ = file.read_attribute_real("/state", "initial_total");
+  // The history's running totals (absent from checkpoints before 2026-12-07: counted from 0).
+  const auto count = [&](const char* name) {
+    return file.has_attribute("/state", name) ? file.read_attribute_int("/state", name) : 0;
+  };
+  substeps_ = count("substeps");
+  rejections_ = count("rejections");
   auto h = Kokkos::create_mirror_view(density_);
   for (int c = 0; c < cells_; ++c)
     for (int k = 0; k < n; ++k) h(c, k) = rho[size_t(c) * n + k];

@@ -780,6 +780,9 @@ void TwoFluidDust::save_state(const SphSystem& sys, io::H5File& f) const {
   }
   const Real heating = drag_heating();
   f.write("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating);
+  int unsolved = 0;  // the history's running count
+  Kokkos::deep_copy(unsolved, mixture_unsolved);
+  f.write_attribute("/state", "two_fluid_mixture_unsolved", static_cast<std::int64_t>(unsolved));
 }
 
 void TwoFluidDust::load_state(SphSystem& sys, const io::H5File& f) {
@@ -794,6 +797,10 @@ void TwoFluidDust::load_state(SphSystem& sys, const io::H5File& f) {
   Real heating = 0.0;
   f.read("/state/two_fluid_drag_heating", io::Block::whole({1}), &heating);
   Kokkos::deep_copy(heat_total, heating);
+  const char* unsolved = "two_fluid_mixture_unsolved";  // absent before 2026-12-07: counted from 0
+  Kokkos::deep_copy(mixture_unsolved, f.has_attribute("/state", unsolved)
+                                          ? static_cast<int>(f.read_attribute_int("/state", unsolved))
+                                          : 0);
 }
 
 TwoFluidDust& add_two_fluid_dust(SphSystem& sys, const DustSettings& settings) {
