@@ -405,8 +405,10 @@ void RunLoop::write_checkpoint(Simulation& sim, State& s) {
     const long long stale = s.next_checkpoint - settings_.checkpoints_kept;
     for (long long i = stale; i >= 1; --i) {
       const std::string old = numbered_path(settings_.output_dir, "checkpoint", i, "h5");
-      if (!std::filesystem::exists(old)) break;
-      std::filesystem::remove(old);
+      std::error_code ec;  // an old checkpoint that cannot be deleted stays: a warning, not a stop
+      if (!std::filesystem::exists(old, ec)) break;
+      if (!std::filesystem::remove(old, ec) || ec)
+        logging::warn("cannot delete the old checkpoint ", old, ec ? ": " + ec.message() : std::string());
     }
   }
   s.next_checkpoint += 1;

@@ -362,6 +362,17 @@ def earlier_checkpoint():
                  f"the continued run ends as the first did, bit for bit ({len(final)} datasets)")
 
 
+def undeletable_checkpoint():
+    """An old checkpoint that cannot be deleted (here a directory in its place) is kept with a warning."""
+    d = fresh_run("undeletable")
+    old = os.path.join(d, "checkpoint_00001.h5")
+    os.remove(old)
+    os.makedirs(os.path.join(old, "in_the_way"))
+    case("an old checkpoint that cannot be deleted", [exe, "--restart", "latest", deck, *common, f"output.dir={d}",
+                                                      "output.checkpoints_kept=1"], 0,
+         [f"cannot delete the old checkpoint {old}", "finished"])
+
+
 def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
@@ -373,6 +384,7 @@ def main():
     damaged_checkpoints()
     changed_decks()
     earlier_checkpoint()
+    undeletable_checkpoint()
     shutil.rmtree(work, ignore_errors=True)
     return checks.finish()
 
