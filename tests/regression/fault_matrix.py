@@ -40,7 +40,7 @@ import time
 import h5py
 import numpy as np
 
-from harness import Checks, checksums, files, run, unreadable_hdf5
+from harness import Checks, checksums, files, hdf5_datasets, run, unreadable_hdf5
 
 BAD_INPUT, IO_ERROR = 2, 5  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 
@@ -329,22 +329,13 @@ def changed_decks():
          ["--force: restart changes transport.vx = 1.0 in the checkpoint, 2.0 now", "finished"])
 
 
-def datasets(path):
-    """Every dataset of an HDF5 file as bytes, by name."""
-    out = {}
-    with h5py.File(path) as f:
-        f.visititems(lambda name, obj: out.__setitem__(name, obj[...].tobytes())
-                     if isinstance(obj, h5py.Dataset) else None)
-    return out
-
-
 def earlier_checkpoint():
     """A restart from a checkpoint older than the newest sets the later outputs aside, so that the next
     --restart latest continues the new run (not the one it replaced), which ends as the first did."""
     d = os.path.join(work, "earlier")
     run([exe, deck, *common, f"output.dir={d}"], cwd=work)
     old_checkpoints, old_snapshots = files(d, "checkpoint_"), files(d, "snapshot_")
-    final_first = datasets(os.path.join(d, old_snapshots[-1]))
+    final_first = hdf5_datasets(os.path.join(d, old_snapshots[-1]))
     with h5py.File(os.path.join(d, "checkpoint_00002.h5")) as f:
         step, count = int(f.attrs["step"]), int(f.attrs["snapshot_count"])
     aside = os.path.join(d, "superseded_00002")
@@ -357,7 +348,7 @@ def earlier_checkpoint():
                  f"the {len(later)} later checkpoints and snapshots and a copy of history.txt set aside")
     case("--restart latest after it", [exe, "--restart", "latest", deck, *common, f"output.dir={d}"], 0,
          [f"restarted from {os.path.join(d, 'checkpoint_00003.h5')} at step {step + 2}", "finished"])
-    final = datasets(os.path.join(d, files(d, "snapshot_")[-1]))
+    final = hdf5_datasets(os.path.join(d, files(d, "snapshot_")[-1]))
     checks.check(final.keys() == final_first.keys() and all(final[k] == final_first[k] for k in final),
                  f"the continued run ends as the first did, bit for bit ({len(final)} datasets)")
 

@@ -23,6 +23,16 @@ def checksums(directory, skip=()):
     return sums
 
 
+
+def hdf5_datasets(path):
+    """Every dataset of an HDF5 file as bytes, by name (for bit-for-bit comparisons)."""
+    import h5py
+    out = {}
+    with h5py.File(path) as f:
+        f.visititems(lambda name, obj: out.__setitem__(name, obj[...].tobytes())
+                     if isinstance(obj, h5py.Dataset) else None)
+    return out
+
 def files(d, prefix, ext=".h5"):
     """Names of the files in d that start with prefix and end with ext, sorted."""
     return sorted(f for f in os.listdir(d) if f.startswith(prefix) and f.endswith(ext))

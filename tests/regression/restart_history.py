@@ -10,9 +10,7 @@ import os
 import shutil
 import sys
 
-import h5py
-
-from harness import Checks, run
+from harness import Checks, hdf5_datasets, run
 import mote
 
 exe, deck, work, n = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
@@ -36,14 +34,7 @@ checks.check(a == b, f"history rows identical ({len(a)} and {len(b)} rows; colum
              f"{open(os.path.join(full, 'history.txt')).readline().strip()[2:]})")
 
 
-def datasets(path):
-    out = {}
-    with h5py.File(path) as f:
-        f.visititems(lambda name, obj: out.__setitem__(name, obj[...].tobytes())
-                     if isinstance(obj, h5py.Dataset) else None)
-    return out
 
-
-x, y = datasets(mote.list_snapshots(full)[-1]), datasets(mote.list_snapshots(split)[-1])
+x, y = hdf5_datasets(mote.list_snapshots(full)[-1]), hdf5_datasets(mote.list_snapshots(split)[-1])
 checks.check(x.keys() == y.keys() and all(x[k] == y[k] for k in x), f"last snapshots identical ({len(x)} datasets)")
 sys.exit(checks.finish())
