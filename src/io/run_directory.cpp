@@ -3,6 +3,8 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <vector>
 
 #include "mote/core/exit_codes.hpp"
@@ -47,29 +50,23 @@ std::string now_utc() {
   return text;
 }
 
-/// Creates `path` exclusively, holding this process as its owner; false if it already exists.
-bool create_lock(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) {
-    if (errno == EEXIST) return false;
-    throw core::IOError("cannot create lock file '" + path + "': " + std::strerror(errno));
-  }
-  const std::string text =
-      "host " + host_name() + "\npid " + std::to_string(::getpid()) + "\nstarted " + now_utc() + "\n";
-  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  const int write_errno = errno;
-  const bool closed = ::close(fd) == 0;
-  if (!written || !closed) {
-    const int saved = written ? errno : write_errno;
-    ::unlink(path.c_str());
-    throw core::IOError("cannot write lock file '" + path + "': " + std::strerror(saved));
-  }
-  return true;
+/// Creates `path` exclusively (O_EXCL) and opens it; -1 if it already exists.
+int create_exclusive(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0 && errno != EEXIST) throw core::IOError("cannot create lock file '" + path + "': " + std::strerror(errno));
+  return fd;
 }
 
-LockOwner read_lock(const std::string& path) {
+/// Replaces the content of the open lock file `fd` with this process's host, pid and start time.
+void write_owner(int fd, const std::string& path) {
+  const std::string text =
+      "host " + host_name() + "\npid " + std::to_string(::getpid()) + "\nstarted " + now_utc() + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size()))
+    throw core::IOError("cannot write lock file '" + path + "': " + std::strerror(errno));
+}
+
+LockOwner parse_owner(std::istream& in) {
   LockOwner owner;
-  std::ifstream in(path);
   std::string key;
   while (in >> key) {
     if (key == "host") in >> owner.host;
@@ -77,6 +74,20 @@ LockOwner read_lock(const std::string& path) {
     if (key == "started") in >> owner.started;
   }
   return owner;
+}
+
+LockOwner read_lock(const std::string& path) {
+  std::ifstream in(path);
+  return parse_owner(in);
+}
+
+/// The owner named in the open lock file `fd`, read through `fd` itself.
+LockOwner read_owner(int fd) {
+  std::string text(512, '\0');
+  const ssize_t n = ::pread(fd, text.data(), text.size(), 0);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  std::istringstream in(text);
+  return parse_owner(in);
 }
 
 /// A lock whose process is gone: same host, and no process with its pid.
@@ -96,15 +107,85 @@ core::InputError in_use(const std::string& dir, const std::string& lock) {
                           "only if no run uses the directory)");
 }
 
-/// Takes the lock file `lock`, or a stale one with a warning; refuses a live one (core::InputError).
-void acquire_lock(const std::string& dir, const std::string& lock) {
-  if (create_lock(lock)) return;
-  const LockOwner owner = read_lock(lock);
-  if (!stale(owner)) throw in_use(dir, lock);
-  logging::warn("taking over the stale lock file '", lock, "' of ", describe(owner), ": that process no longer exists");
-  if (::unlink(lock.c_str()) != 0 && errno != ENOENT)
-    throw core::IOError("cannot remove stale lock file '" + lock + "': " + std::strerror(errno));
-  if (!create_lock(lock)) throw in_use(dir, lock);
+enum class Flock { kHeld, kBusy, kUnsupported };
+
+/// An exclusive flock(2) on `fd`, without waiting.
+Flock try_flock(int fd, const std::string& path) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return Flock::kHeld;
+  if (errno == EWOULDBLOCK) return Flock::kBusy;
+  if (errno == ENOSYS || errno == ENOLCK || errno == EOPNOTSUPP || errno == EINVAL) return Flock::kUnsupported;
+  throw core::IOError("cannot lock '" + path + "': " + std::strerror(errno));
+}
+
+/// Whether the open file `fd` is still the file named `path` (not removed or replaced meanwhile).
+bool still_named(int fd, const std::string& path) {
+  struct stat open_file {
+  }, named{};
+  return ::fstat(fd, &open_file) == 0 && ::stat(path.c_str(), &named) == 0 && open_file.st_dev == named.st_dev &&
+         open_file.st_ino == named.st_ino;
+}
+
+/// Without flock (a file system that has none): the lock is its file's existence; one naming a
+/// process that no longer exists on this host is taken over with a warning, any other refused.
+int lock_by_existence(const std::string& dir, const std::string& lock) {
+  logging::warn("the file system of '", dir, "' does not support flock: '", lock,
+                "' locks the directory by its existence (one left by a run on another host must be removed by hand)");
+  int fd = create_exclusive(lock);
+  if (fd < 0) {
+    const LockOwner owner = read_lock(lock);
+    if (!stale(owner)) throw in_use(dir, lock);
+    logging::warn("taking over the stale lock file '", lock, "' of ", describe(owner),
+                  ": that process no longer exists");
+    if (::unlink(lock.c_str()) != 0 && errno != ENOENT)
+      throw core::IOError("cannot remove stale lock file '" + lock + "': " + std::strerror(errno));
+    fd = create_exclusive(lock);
+    if (fd < 0) throw in_use(dir, lock);
+  }
+  write_owner(fd, lock);
+  return fd;
+}
+
+/// Locks `dir` through its lock file `lock` and returns the open descriptor that holds it: an
+/// exclusive flock(2) held while the run lives, which the system releases however the process ends.
+/// A lock file that no process holds is a run's that ended without removing it: taken over with a
+/// warning. A held one is refused (core::InputError). Two runs starting together cannot both win:
+/// the flock decides, and a file removed between open and flock (its run ending) is opened anew.
+int acquire_lock(const std::string& dir, const std::string& lock) {
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    int fd = create_exclusive(lock);
+    const bool created = fd >= 0;
+    if (!created) fd = ::open(lock.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) {
+      if (errno == ENOENT) continue;  // removed since: its run has ended
+      throw core::IOError("cannot open lock file '" + lock + "': " + std::strerror(errno));
+    }
+    Flock state;
+    try {
+      state = try_flock(fd, lock);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    if (state == Flock::kUnsupported && created) {
+      write_owner(fd, lock);
+      return fd;
+    }
+    if (state != Flock::kHeld) {
+      ::close(fd);
+      if (state == Flock::kBusy) throw in_use(dir, lock);
+      return lock_by_existence(dir, lock);
+    }
+    if (!still_named(fd, lock)) {  // removed by the run that held it, perhaps already made anew
+      ::close(fd);
+      continue;
+    }
+    if (const LockOwner previous = read_owner(fd); !created && previous.pid > 0)
+      logging::warn("taking over the lock file '", lock, "' of ", describe(previous),
+                    ": that run has ended without removing it");
+    write_owner(fd, lock);
+    return fd;
+  }
+  throw core::IOError("cannot lock '" + lock + "': its file was removed and made anew 16 times while taking it");
 }
 
 /// The files of a run in `dir`: its run id, history, snapshots, checkpoints and their temporaries.
@@ -196,7 +277,7 @@ RunDirectory::RunDirectory(const std::string& dir, bool overwrite, const std::op
       failure = std::make_exception_ptr(core::IOError("output directory '" + dir + "': " + e.what()));
       code = core::kExitIOError;
     }
-    if (failure && locked_) ::unlink(lock_path_.c_str());
+    if (failure) release_lock();
   }
   code = comm.broadcast(code);
   if (failure) std::rethrow_exception(failure);
@@ -205,13 +286,17 @@ RunDirectory::RunDirectory(const std::string& dir, bool overwrite, const std::op
   run_id_ = restart ? restart->run_id : broadcast_id(run_id_, comm);
 }
 
-RunDirectory::~RunDirectory() {
-  if (locked_) ::unlink(lock_path_.c_str());
+RunDirectory::~RunDirectory() { release_lock(); }
+
+void RunDirectory::release_lock() {
+  if (lock_fd_ < 0) return;
+  ::unlink(lock_path_.c_str());  // while still holding it: a run waiting on this file then opens anew
+  ::close(lock_fd_);
+  lock_fd_ = -1;
 }
 
 std::string RunDirectory::claim(bool overwrite, const std::optional<RestartSource>& restart) {
-  acquire_lock(dir_, lock_path_);
-  locked_ = true;
+  lock_fd_ = acquire_lock(dir_, lock_path_);
   if (restart) return continue_run(dir_, *restart);
   clear_for_new_run(dir_, overwrite);
   const std::string id = new_run_id();

@@ -64,9 +64,10 @@ def run_within(cmd, time_limit, **kw):
         return None, p.communicate()[0] + f"\n(killed after {time_limit} s)"
 
 
-def run(cmd, expect=0, **kw):
-    """Runs cmd (list); returns CompletedProcess; raises if the exit code differs from expect."""
-    env = dict(os.environ, **MPI_ENV)
+def run(cmd, expect=0, extra_env=None, **kw):
+    """Runs cmd (list) with extra_env added to the environment; returns CompletedProcess; raises if the exit
+    code differs from expect."""
+    env = dict(os.environ, **MPI_ENV, **(extra_env or {}))
     p = subprocess.run(cmd, capture_output=True, text=True, env=env, **kw)
     if expect is not None and p.returncode != expect:
         raise AssertionError(f"{' '.join(cmd)} exited {p.returncode}, expected {expect}\nstdout:\n{p.stdout[-3000:]}\nstderr:\n{p.stderr[-3000:]}")

@@ -1,15 +1,19 @@
 #!/usr/bin/env python3
 """An output directory belongs to one run; restarts continue only their own run (issue 22, items 1-2).
 
-    run_directories.py EXE WORKDIR
+    run_directories.py EXE NO_FLOCK_LIBRARY WORKDIR
 
 Runs gaussian_pulse (16 x 16) and checks, each with the exit code, the message
 and checksums of the files that must not change:
   * a run stores one run id in run_id, every snapshot, every checkpoint and the history header,
     and removes its lock file run.lock at exit (also after SIGTERM);
-  * a second run into a directory locked by a live process (a running run, or a lock naming this
-    script's pid) is refused with exit 2 before anything is written; a stale lock (dead pid, this
-    host) is taken over with a warning;
+  * a second run into a directory locked by a live process (a running run, or this script holding
+    the flock of run.lock) is refused with exit 2 before anything is written; a lock file that no
+    process holds (left by a killed run; naming a dead pid, or this live script) is taken over with
+    a warning;
+  * where flock fails (NO_FLOCK_LIBRARY under LD_PRELOAD, as on a file system without locks), the
+    lock file's existence locks: one naming a live process refuses, a dead pid of this host is
+    taken over, and a run removes its own;
   * a new run into a directory holding a run's files is refused (exit 2); output.overwrite=true
     replaces them with a new run id;
   * --restart latest refuses a checkpoint of another run copied into the directory (exit 2);
@@ -18,6 +22,7 @@ and checksums of the files that must not change:
     carry over, one given on the command line does.
 Ends with 'N passed, M failed'.
 """
+import fcntl
 import os
 import shutil
 import signal
@@ -32,7 +37,7 @@ import mote
 
 BAD_INPUT, INTERRUPTED = 2, 4  # docs/quickstart.md, include/mote/core/exit_codes.hpp
 
-exe, work = sys.argv[1], sys.argv[2]
+exe, no_flock, work = sys.argv[1], sys.argv[2], sys.argv[3]
 deck = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "problems", "gaussian_pulse",
                                     "gaussian_pulse.toml"))
 common = ["grid.nx=16", "grid.ny=16", "output.checkpoint_every=4", "output.checkpoints_kept=10",
@@ -40,11 +45,11 @@ common = ["grid.nx=16", "grid.ny=16", "output.checkpoint_every=4", "output.check
 checks = Checks()
 
 
-def case(name, cmd, code, expected, unchanged=(), cwd=None):
+def case(name, cmd, code, expected, unchanged=(), cwd=None, env=None):
     """Runs cmd; checks its exit code, that its output holds every `expected` text and that the
     directories in `unchanged` hold the same files with the same bytes afterwards."""
     before = {d: checksums(d) for d in unchanged}
-    p = run(cmd, expect=None, cwd=cwd or work)
+    p = run(cmd, expect=None, cwd=cwd or work, extra_env=env)
     text = p.stdout + p.stderr
     checks.check(p.returncode == code, f"{name}: exit code {p.returncode} == {code}" +
                  ("" if p.returncode == code else f"\n{text[-2000:]}"))
@@ -110,22 +115,48 @@ def two_runs_at_once():
 
 
 def locks(a):
-    """A lock naming a live process (this script) refuses; one naming a dead process is taken over."""
+    """A lock file whose flock a live process (this script) holds refuses; one that no process holds is
+    taken over, whether it names a dead process or a live one (another host's run, a reused pid)."""
     write_lock(a, os.getpid())
-    case("restart into a locked directory", [exe, "--restart", "latest", deck, *common, f"output.dir={a}"],
-         BAD_INPUT, [f"output directory '{a}' is in use by another run: lock file '{a}/run.lock' is held by "
-                     f"pid {os.getpid()} on host {socket.gethostname()}"], unchanged=[a])
+    with open(os.path.join(a, "run.lock")) as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        case("restart into a locked directory", [exe, "--restart", "latest", deck, *common, f"output.dir={a}"],
+             BAD_INPUT, [f"output directory '{a}' is in use by another run: lock file '{a}/run.lock' is held by "
+                         f"pid {os.getpid()} on host {socket.gethostname()}"], unchanged=[a])
     fresh = os.path.join(work, "locked_empty")
     write_lock(fresh, os.getpid())
-    case("new run into a locked empty directory", [exe, deck, *common, f"output.dir={fresh}"], BAD_INPUT,
-         ["is in use by another run"], unchanged=[fresh])
+    with open(os.path.join(fresh, "run.lock")) as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        case("new run into a locked empty directory", [exe, deck, *common, f"output.dir={fresh}"], BAD_INPUT,
+             ["is in use by another run"], unchanged=[fresh])
     checks.check(os.listdir(fresh) == ["run.lock"], "nothing written beside the lock")
     os.remove(os.path.join(a, "run.lock"))
     pid = dead_pid()
-    write_lock(fresh, pid)
-    case("stale lock", [exe, deck, *common, f"output.dir={fresh}"], 0,
-         [f"taking over the stale lock file '{fresh}/run.lock' of pid {pid}", "that process no longer exists"])
-    checks.check(not os.path.exists(os.path.join(fresh, "run.lock")), "stale lock: removed at exit")
+    for owner in (pid, os.getpid()):
+        shutil.rmtree(fresh)
+        write_lock(fresh, owner)
+        case(f"lock file left by pid {owner}, held by none", [exe, deck, *common, f"output.dir={fresh}"], 0,
+             [f"taking over the lock file '{fresh}/run.lock' of pid {owner}", "that run has ended without removing it"])
+        checks.check(not os.path.exists(os.path.join(fresh, "run.lock")), "taken-over lock: removed at exit")
+
+
+def locks_without_flock():
+    """Where flock fails, the lock file's existence locks (a dead pid of this host is taken over)."""
+    env = {"LD_PRELOAD": no_flock}
+    d = os.path.join(work, "no_flock")
+    write_lock(d, os.getpid())
+    case("no flock: lock naming a live process", [exe, deck, *common, f"output.dir={d}"], BAD_INPUT,
+         ["does not support flock", f"is in use by another run: lock file '{d}/run.lock' is held by pid {os.getpid()}"],
+         unchanged=[d], env=env)
+    pid = dead_pid()
+    write_lock(d, pid)
+    case("no flock: stale lock", [exe, deck, *common, f"output.dir={d}"], 0,
+         ["does not support flock", f"taking over the stale lock file '{d}/run.lock' of pid {pid}",
+          "that process no longer exists", "finished"], env=env)
+    checks.check(not os.path.exists(os.path.join(d, "run.lock")), "no flock: the run removes its lock at exit")
+    case("no flock: a run into a directory without a lock", [exe, deck, *common, f"output.dir={d}",
+                                                             "output.overwrite=true"], 0, ["finished"], env=env)
+    checks.check(not os.path.exists(os.path.join(d, "run.lock")), "no flock: lock removed at exit")
 
 
 def used_directory(a):
@@ -180,6 +211,7 @@ def main():
     run_ids_everywhere(a)
     two_runs_at_once()
     locks(a)
+    locks_without_flock()
     used_directory(a)
     foreign_checkpoint(a)
     restart_from_file()

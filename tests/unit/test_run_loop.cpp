@@ -2,10 +2,13 @@
 // Simulation: the forced decay y' = -y + sin(t), forward Euler. Checks output
 // times, restart bit-identity, non-finite detection, signal handling and the
 // ownership of the output directory (lock, run id, overwrite).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -15,10 +18,13 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
+#include <vector>
 
 #include "mote/core/deck.hpp"
 #include "mote/io/output_files.hpp"
+#include "mote/io/run_directory.hpp"
 #include "mote/io/run_loop.hpp"
 
 namespace {
@@ -450,15 +456,79 @@ TEST_F(RunLoopTest, RunIdInEveryFileAndLockRemovedAtExit) {
 
 TEST_F(RunLoopTest, LockedDirectoryIsRefusedAndStaleLockTakenOver) {
   write_lock(dir_, ::getpid());
+  const int held = ::open((fs::path(dir_) / "run.lock").c_str(), O_RDWR);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
   Decay sim;
   const std::string why = input_error([&] { run(sim, {}); });
   EXPECT_NE(why.find("output directory '" + dir_ + "' is in use by another run"), std::string::npos) << why;
+  EXPECT_NE(why.find("held by pid " + std::to_string(::getpid())), std::string::npos) << why;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 1);  // the lock alone
+  ::close(held);  // a lock file naming a live process that no longer holds it (another host's, a reused pid)
+  EXPECT_EQ(run(sim, {}), core::kExitFinished);
+  EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
   const pid_t child = fork();
   if (child == 0) _exit(0);
   waitpid(child, nullptr, 0);
   write_lock(dir_, child);
-  EXPECT_EQ(run(sim, {}), core::kExitFinished);
+  EXPECT_EQ(run(sim, {"output.overwrite=true"}), core::kExitFinished);
+  EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
+}
+
+// Runs that start together on a lock file left by a dead run: exactly one takes the directory.
+TEST_F(RunLoopTest, RunsStartingTogetherOnAStaleLockLetExactlyOneIn) {
+  constexpr int kRunners = 8;
+  for (int round = 0; round < 40; ++round) {
+    write_lock(dir_, 999999999);  // no such process
+    std::atomic<int> waiting{kRunners}, done{0}, claimed{0}, refused{0};
+    std::vector<std::thread> runners;
+    for (int i = 0; i < kRunners; ++i)
+      runners.emplace_back([&] {
+        std::optional<io::RunDirectory> directory;
+        waiting.fetch_sub(1);
+        while (waiting.load() > 0) std::this_thread::yield();
+        try {
+          directory.emplace(dir_, true, std::nullopt, core::Comm::self());
+          claimed.fetch_add(1);
+        } catch (const core::InputError&) {
+          refused.fetch_add(1);
+        }
+        done.fetch_add(1);
+        while (done.load() < kRunners) std::this_thread::yield();  // keep a claim until every runner has tried
+      });
+    for (auto& t : runners) t.join();
+    ASSERT_EQ(claimed.load(), 1) << "round " << round;
+    ASSERT_EQ(refused.load(), kRunners - 1) << "round " << round;
+    EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
+  }
+}
+
+// Runs that start while others end (the lock file removed and made anew meanwhile) never hold the
+// directory two at a time.
+TEST_F(RunLoopTest, RunsStartingAsOthersEndNeverShareTheDirectory) {
+  constexpr int kRunners = 4, kTries = 1000;
+  std::atomic<int> holders{0}, most{0}, claims{0}, errors{0};
+  std::vector<std::thread> runners;
+  for (int i = 0; i < kRunners; ++i)
+    runners.emplace_back([&] {
+      for (int t = 0; t < kTries; ++t) {
+        try {
+          const io::RunDirectory directory(dir_, true, std::nullopt, core::Comm::self());
+          const int now = holders.fetch_add(1) + 1;
+          for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
+          }
+          claims.fetch_add(1);
+          std::this_thread::yield();
+          holders.fetch_sub(1);
+        } catch (const core::InputError&) {  // held by another: refused
+        } catch (const std::exception&) {    // two runs writing the run id at once
+          errors.fetch_add(1);
+        }
+      }
+    });
+  for (auto& t : runners) t.join();
+  EXPECT_EQ(most.load(), 1);
+  EXPECT_EQ(errors.load(), 0);
+  EXPECT_GE(claims.load(), 20);  // the directory changed hands
   EXPECT_FALSE(fs::exists(fs::path(dir_) / "run.lock"));
 }
 

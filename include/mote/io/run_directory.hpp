@@ -1,12 +1,14 @@
 // Ownership of an output directory by one run (DESIGN.md "Output and run
-// directories", issue 22). While a run lives, `run.lock` in output.dir holds
-// its host, pid and start time (created with O_CREAT|O_EXCL, removed when the
-// run ends; a lock left by a dead process on the same host is taken over with
-// a warning). `run_id` holds the id of the run whose files the directory
-// holds; every snapshot, checkpoint and the history carry the same id. A fresh
-// run refuses a directory that holds another run's files unless
-// output.overwrite = true (then those files are deleted); a restart continues
-// only a checkpoint whose run id is the directory's.
+// directories", issue 22). While a run lives, it holds an exclusive flock(2)
+// on `run.lock` in output.dir, which names its host, pid and start time; the
+// file is removed when the run ends, and one that no process holds (a killed
+// run's, on any host) is taken over with a warning. On a file system without
+// flock the file's existence is the lock (O_CREAT|O_EXCL; one naming a dead
+// process of the same host is taken over). `run_id` holds the id of the run
+// whose files the directory holds; every snapshot, checkpoint and the history
+// carry the same id. A fresh run refuses a directory that holds another run's
+// files unless output.overwrite = true (then those files are deleted); a
+// restart continues only a checkpoint whose run id is the directory's.
 #pragma once
 
 #include <optional>
@@ -32,7 +34,7 @@ class RunDirectory {
   /// that cannot be written is a core::IOError (exit 5).
   RunDirectory(const std::string& dir, bool overwrite, const std::optional<RestartSource>& restart,
                const core::Comm& comm);
-  /// Removes the lock file (rank 0).
+  /// Removes the lock file and releases its lock (rank 0).
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
@@ -43,10 +45,11 @@ class RunDirectory {
  private:
   /// Rank 0's part: lock, check and record the run id; returns the run id.
   std::string claim(bool overwrite, const std::optional<RestartSource>& restart);
+  void release_lock();
 
   std::string dir_;
   std::string lock_path_;
-  bool locked_ = false;
+  int lock_fd_ = -1;  // rank 0: the open lock file whose flock this run holds
   std::string run_id_;
 };
 
