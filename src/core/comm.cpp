@@ -6,6 +6,7 @@
 #include <limits>
 #include <new>
 #include <stdexcept>
+#include <string>
 
 namespace mote::core {
 
@@ -68,6 +69,16 @@ int Comm::broadcast(int x) const {
   return x;
 }
 
+std::string Comm::broadcast(const std::string& text) const {
+  if (size_ == 1) return text;
+  if (text.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::length_error("Comm::broadcast: a text of more than 2^31 - 1 bytes");
+  const int length = broadcast(static_cast<int>(text.size()));
+  std::string received = is_root() ? text : std::string(static_cast<std::size_t>(length), '\0');
+  MPI_Bcast(received.data(), length, MPI_CHAR, 0, comm_);
+  return received;
+}
+
 void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
   sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
 }
@@ -119,6 +130,7 @@ long long Comm::min(long long x) const { return x; }
 std::vector<double> Comm::sum(const std::vector<double>& x) const { return x; }
 void Comm::barrier() const {}
 int Comm::broadcast(int x) const { return x; }
+std::string Comm::broadcast(const std::string& text) const { return text; }
 void Comm::sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const {
   sendrecv(send.data(), static_cast<int>(send.size()), dest, recv.data(), static_cast<int>(recv.size()), source, tag);
 }

@@ -2,6 +2,7 @@
 #include "mote/io/restart.hpp"
 
 #include <exception>
+#include <sstream>
 #include <vector>
 
 #include "mote/core/log.hpp"
@@ -30,8 +31,25 @@ std::string sound_checkpoint(const std::string& path, const core::Comm& comm) {
   return path;
 }
 
+namespace {
+
+/// Rank 0's list of the checkpoints in `dir`, on every rank (a listing per rank could differ where a
+/// network file system caches directories, and every rank must open the same files).
+std::vector<std::string> checkpoints_listed_on_root(const std::string& dir, const core::Comm& comm) {
+  std::string joined;
+  if (comm.is_root())
+    for (const auto& path : numbered_files(dir, "checkpoint", "h5")) joined += path + '\0';
+  joined = comm.broadcast(joined);
+  std::vector<std::string> paths;
+  std::istringstream lines(joined);
+  for (std::string path; std::getline(lines, path, '\0');) paths.push_back(path);
+  return paths;
+}
+
+}  // namespace
+
 std::string latest_sound_checkpoint(const std::string& dir, const core::Comm& comm) {
-  const std::vector<std::string> candidates = numbered_files(dir, "checkpoint", "h5");
+  const std::vector<std::string> candidates = checkpoints_listed_on_root(dir, comm);
   if (candidates.empty()) throw core::InputError("--restart latest: no checkpoint in '" + dir + "'");
   for (const auto& path : candidates) {
     const std::string defect = checkpoint_defect(path, comm);

@@ -11,6 +11,8 @@
 #include "mote/core/comm.hpp"
 #include "mote/core/exit_codes.hpp"
 #include "mote/io/h5_file.hpp"
+#include "mote/io/output_files.hpp"
+#include "mote/io/restart.hpp"
 
 using mote::core::Comm;
 using mote::io::Block;
@@ -174,4 +176,31 @@ TEST(MpiHdf5, StateChecksumsAreCheckedInSlabs) {
   overwrite_on_rank0(path, comm, all, 7, 0.5 * 7 - 3.0 + 1e-15);
   EXPECT_NE(H5File(path, H5File::Mode::Read, comm).check_state_dataset("/state/a").find("does not match its checksum"),
             std::string::npos);
+}
+
+// A restart's `--restart latest` takes rank 0's listing of the directory on every rank: here rank 1 is handed
+// an empty directory (as a stale network-file-system cache would show it) and still names rank 0's newest
+// sound checkpoint, which both ranks then vet together.
+TEST(MpiRestart, LatestCheckpointIsChosenFromRankZerosListing) {
+  const auto comm = Comm::world();
+  const auto base = std::filesystem::temp_directory_path() / "mote_mpi_latest";
+  const std::string listed = (base / "listed").string(), empty = (base / "empty").string();
+  if (comm.is_root()) {
+    std::filesystem::remove_all(base);
+    std::filesystem::create_directories(listed);
+    std::filesystem::create_directories(empty);
+  }
+  comm.barrier();
+  const double state[2] = {1.0, 2.0};
+  for (int index : {2, 3}) {
+    H5File f(mote::io::numbered_path(listed, "checkpoint", index, "h5"), H5File::Mode::Create, comm);
+    f.write("/state/a", Block::whole({2}), state);
+    f.write_attributes_checksum();
+    f.close();
+  }
+  const std::string chosen = mote::io::latest_sound_checkpoint(comm.is_root() ? listed : empty, comm);
+  EXPECT_EQ(chosen, mote::io::numbered_path(listed, "checkpoint", 3, "h5"));
+  EXPECT_EQ(comm.broadcast(std::string(comm.is_root() ? "rank 0's text" : "")), "rank 0's text");
+  comm.barrier();
+  if (comm.is_root()) std::filesystem::remove_all(base);
 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #ifdef MOTE_HAVE_MPI
@@ -37,6 +38,8 @@ class Comm {
   void barrier() const;
   /// Broadcast of an int from root.
   int broadcast(int x) const;
+  /// Root's `text` on every rank (the others' argument is ignored); std::length_error beyond 2^31 - 1 bytes.
+  std::string broadcast(const std::string& text) const;
   /// Paired exchange: send `send` to rank `dest`, receive `recv.size()` values from `source`.
   /// A negative rank means "no partner" on that side (nothing sent or received).
   void sendrecv(const std::vector<double>& send, int dest, std::vector<double>& recv, int source, int tag) const;

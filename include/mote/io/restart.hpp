@@ -24,8 +24,8 @@ std::string checkpoint_defect(const std::string& path, const core::Comm& comm);
 /// `path` if it is sound, else a core::InputError naming it and the defect.
 std::string sound_checkpoint(const std::string& path, const core::Comm& comm);
 
-/// The newest sound checkpoint in `dir`; each newer defective one is named in a warning.
-/// core::InputError if there is none.
+/// The newest sound checkpoint in `dir` as rank 0 lists it (collective: every rank vets the same
+/// files); each newer defective one is named in a warning. core::InputError if there is none.
 std::string latest_sound_checkpoint(const std::string& dir, const core::Comm& comm);
 
 /// The resolved deck (TOML text) stored in `checkpoint`.
