@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -39,19 +40,29 @@ std::string format_real(double x) {
   return text;
 }
 
+double clock_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 class Decay final : public io::Simulation {
  public:
   long long poison_step = -1;  // this step produces a NaN
   long long signal_step = -1;  // this step raises SIGTERM
   double y = 1.0;
   long long steps = 0;
-  double dt = 0.03;  // the stable time-step this simulation reports
+  double dt = 0.03;                            // the stable time-step this simulation reports
+  std::chrono::milliseconds pause{0};          // each step's sleep
+  std::map<long long, double> started, ended;  // steady-clock seconds around each step's advance
+  mutable std::vector<long long> saved_at;     // the steps whose state was saved (checkpoints)
 
   double max_dt() override { return dt; }
   std::string dt_limit() const override { return "decay condition"; }
   void advance(double t, double dt) override {
+    started[steps + 1] = clock_seconds();
+    std::this_thread::sleep_for(pause);
     y += dt * (-y + std::sin(t));
     steps += 1;
+    ended[steps] = clock_seconds();
     if (steps == poison_step) y = std::nan("");
     if (steps == signal_step) std::raise(SIGTERM);
   }
@@ -60,6 +71,7 @@ class Decay final : public io::Simulation {
     out.cell_field("y", &y, {"1", 1.0});
   }
   void save_state(io::H5File& f) const override {
+    saved_at.push_back(steps);
     f.write("/state/y", io::Block::whole({1}), &y);
     const std::int64_t s = steps;
     f.write("/state/steps", io::Block::whole({1}), &s);
@@ -132,6 +144,32 @@ TEST_F(RunLoopTest, SnapshotsLandExactlyOnOutputTimes) {
   EXPECT_TRUE(fs::exists(io::numbered_path(dir_, "snapshot", 4, "xmf")));
   EXPECT_TRUE(fs::exists(fs::path(dir_) / "history.txt"));
   for (const auto& e : fs::directory_iterator(dir_)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+// output.checkpoint_wall: a checkpoint at the first step that ends W wall seconds or more after the last
+// checkpoint (or the start), and none earlier. Bounded by the step's clock readings: the loop reads its
+// clock after a step's advance ends and before the next one starts, and resets it between the checkpoint's
+// step and the next advance.
+TEST_F(RunLoopTest, WallTimeCheckpointsFollowTheirInterval) {
+  constexpr double kWall = 0.1;
+  Decay sim;
+  sim.pause = std::chrono::milliseconds(20);
+  const double called = clock_seconds();
+  ASSERT_EQ(run(sim, {"output.checkpoint_every=0", "output.checkpoint_wall=0.1", "output.checkpoints_kept=100"}),
+            core::kExitFinished);
+  const double returned = clock_seconds();
+  std::vector<long long> at = sim.saved_at;
+  at.pop_back();  // the end's checkpoint
+  ASSERT_GE(at.size(), 4u) << sim.steps << " steps";
+  long long last = 0;
+  for (const long long k : at) {
+    const double earliest_reset = last == 0 ? called : sim.ended.at(last);
+    const double latest_reading = k == sim.steps ? returned : sim.started.at(k + 1);
+    EXPECT_GE(latest_reading - earliest_reset, kWall) << "checkpoint at step " << k << " too early";
+    for (long long s = last + 1; s < k; ++s)
+      EXPECT_LT(sim.ended.at(s) - sim.started.at(last + 1), kWall) << "no checkpoint at step " << s;
+    last = k;
+  }
 }
 
 TEST_F(RunLoopTest, SnapshotTimesListLandsOnEachAndTheEnd) {
