@@ -7,6 +7,8 @@
 #include <string>
 
 #include "mote/core/device_sort.hpp"
+#include "mote/core/exit_codes.hpp"
+#include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 
 namespace mote::sph {
@@ -228,6 +230,33 @@ struct GatherScan {
   }
 };
 
+/// A core::NumericalError naming the first particle whose position or smoothing length is not finite,
+/// or whose h is not positive: a cell index cannot be formed from it. One reduction; the offending
+/// particle's values are copied to the host only to report them.
+template <int Dim>
+void refuse_unusable_particles(const Particles& p) {
+  auto x = p.x;
+  auto h = p.h;
+  const int n = p.n;
+  int first = 0;
+  par_reduce(
+      "sph::neighbour_unusable", 0, n,
+      KOKKOS_LAMBDA(int i, int& r) {
+        bool usable = math::isfinite(h(i)) && h(i) > 0.0;
+        for (int d = 0; d < Dim; ++d) usable = usable && math::isfinite(x(i, d));
+        if (!usable && i < r) r = i;
+      },
+      Kokkos::Min<int>(first));
+  if (first >= n) return;  // the reducer starts from the largest int
+  const auto xi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Kokkos::subview(x, first, Kokkos::ALL));
+  const auto hi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Kokkos::subview(h, first));
+  std::string where;
+  for (int d = 0; d < Dim; ++d) where += (d ? ", " : "") + logging::format("%.17g", xi(d));
+  throw core::NumericalError(logging::cat("sph: particle ", first, " (in memory order) has position (", where,
+                                          ") and h = ", logging::format("%.17g", hi()),
+                                          " at a neighbour rebuild; positions and h must be finite, h > 0"));
+}
+
 /// Returns true when the exact count-then-fill path was taken.
 template <int Dim>
 bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Real skin, View<int*> prev_counts,
@@ -235,6 +264,7 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
   const int n = p.n;
   auto x = p.x;
   auto h = p.h;
+  refuse_unusable_particles<Dim>(p);
   par_for(
       "sph::neighbour_wrap", 0, n, KOKKOS_LAMBDA(int i) {
         for (int d = 0; d < Dim; ++d) x(i, d) = box.wrap(x(i, d), d);
@@ -245,7 +275,6 @@ bool build_impl(NeighbourList& nl, Particles& p, const Box& box, Real radius, Re
       "sph::neighbour_hmin", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = h(i) < r ? h(i) : r; }, Kokkos::Min<Real>(hmin));
   par_reduce(
       "sph::neighbour_hmax", 0, n, KOKKOS_LAMBDA(int i, Real& r) { r = h(i) > r ? h(i) : r; }, Kokkos::Max<Real>(hmax));
-  if (!(hmin > 0.0)) throw std::runtime_error("sph::NeighbourList: smoothing lengths must be positive");
 
   const Real eps = skin;
   const Real delta = skin * radius * hmin;

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/sph/neighbours.hpp"
 
 namespace {
@@ -240,4 +241,51 @@ TEST(SphNeighbours, ListsBeyondTheIntRangeAreRefused) {
     EXPECT_NE(std::string(e.what()).find("3000000000 entries exceeds the 32-bit index range"), std::string::npos)
         << e.what();
   }
+}
+
+// A particle whose position or h is not finite (a step gone wrong between non-finite checks) is named at the
+// next rebuild as a numerical failure (exit 3), not binned into a cell index it has none of; the old build
+// looped forever on an infinite periodic coordinate, or sized its cells from an infinite extent.
+TEST(SphNeighbours, NonFiniteParticlesAreNamedAtARebuild) {
+  for (const bool periodic : {true, false}) {
+    for (const int field : {0, 1, 2}) {  // x = +inf, z = NaN, h = -inf
+      Cloud c = random_cloud(3, 200, periodic, 0.05, 2.0, 21);
+      auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.p.x);
+      auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.p.h);
+      if (field == 0) x(137, 0) = std::numeric_limits<Real>::infinity();
+      if (field == 1) x(137, 2) = std::numeric_limits<Real>::quiet_NaN();
+      if (field == 2) h(137) = -std::numeric_limits<Real>::infinity();
+      h(150) = std::numeric_limits<Real>::quiet_NaN();  // a later one is not the one named
+      Kokkos::deep_copy(c.p.x, x);
+      Kokkos::deep_copy(c.p.h, h);
+      NeighbourList nl;
+      try {
+        nl.build(c.p, c.box, KernelType::M4, 0.1);
+        ADD_FAILURE() << "no error for field " << field;
+      } catch (const mote::core::NumericalError& e) {
+        EXPECT_NE(std::string(e.what()).find("sph: particle 137 (in memory order) has position ("), std::string::npos)
+            << e.what();
+      }
+    }
+  }
+}
+
+// Box::wrap brings any finite coordinate into [lo, hi) of a periodic direction (one length at a time near
+// the box, as a particle crossing a boundary; by a remainder far from it) and leaves non-finite ones as they
+// are; a free direction is not wrapped.
+TEST(SphBox, WrapBringsEveryFiniteCoordinateIntoThePeriodicBox) {
+  Box box;
+  box.lo[0] = -0.5;
+  box.hi[0] = 0.25;
+  box.periodic[0] = true;
+  EXPECT_EQ(box.wrap(0.25 + 0.125, 0), 0.25 + 0.125 - 0.75);
+  EXPECT_EQ(box.wrap(-0.5 - 0.125, 0), -0.5 - 0.125 + 0.75);
+  for (const Real x : {1e300, -1e300, 7.3e8, -2.1e5, 3.0, -3.01}) {
+    const Real w = box.wrap(x, 0);
+    EXPECT_TRUE(w >= -0.5 && w < 0.25) << x << " -> " << w;
+    EXPECT_NEAR(std::remainder(w - x, 0.75), 0.0, 1e-12 * std::max(1.0, std::fabs(x))) << x;
+  }
+  EXPECT_EQ(box.wrap(std::numeric_limits<Real>::infinity(), 0), std::numeric_limits<Real>::infinity());
+  EXPECT_TRUE(std::isnan(box.wrap(std::numeric_limits<Real>::quiet_NaN(), 0)));
+  EXPECT_EQ(box.wrap(1e300, 1), 1e300);
 }

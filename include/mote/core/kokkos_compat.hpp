@@ -27,6 +27,7 @@ using MOTE_KOKKOS_MATH_NS::fabs;
 using MOTE_KOKKOS_MATH_NS::floor;
 using MOTE_KOKKOS_MATH_NS::fmax;
 using MOTE_KOKKOS_MATH_NS::fmin;
+using MOTE_KOKKOS_MATH_NS::fmod;
 using MOTE_KOKKOS_MATH_NS::hypot;
 using MOTE_KOKKOS_MATH_NS::isfinite;
 using MOTE_KOKKOS_MATH_NS::isnan;

@@ -44,13 +44,17 @@ struct Box {
     return (xa - xb) - image_shift(code, d);
   }
 
-  /// Wraps a coordinate back into [lo, hi) in a periodic direction.
+  /// Wraps a coordinate back into [lo, hi) in a periodic direction: one box length added or
+  /// subtracted at a time (the bits of a particle that crossed a boundary), a remainder first
+  /// where x lies more than kFarLengths lengths outside. A non-finite x is returned as it is (the
+  /// neighbour rebuild reports it).
   KOKKOS_INLINE_FUNCTION Real wrap(Real x, int d) const {
-    if (periodic[d]) {
-      const Real len = hi[d] - lo[d];
-      while (x >= hi[d]) x -= len;
-      while (x < lo[d]) x += len;
-    }
+    if (!periodic[d] || !math::isfinite(x)) return x;
+    constexpr Real kFarLengths = 4.0;
+    const Real len = hi[d] - lo[d];
+    if (x >= hi[d] + kFarLengths * len || x < lo[d] - kFarLengths * len) x = lo[d] + math::fmod(x - lo[d], len);
+    while (x >= hi[d]) x -= len;
+    while (x < lo[d]) x += len;
     return x;
   }
 };
