@@ -6,7 +6,8 @@
 Runs gaussian_pulse (16 x 16) and checks, each with the exit code, the message
 and checksums of the files that must not change:
   * a run stores one run id in run_id, every snapshot, every checkpoint and the history header,
-    and removes its lock file run.lock at exit (also after SIGTERM);
+    and removes its lock file run.lock at exit (also after SIGTERM); the file a run killed by SIGKILL
+    leaves is taken over by the next run;
   * a second run into a directory locked by a live process (a running run, or this script holding
     the flock of run.lock) is refused with exit 2 before anything is written; a lock file that no
     process holds (left by a killed run; naming a dead pid, or this live script) is taken over with
@@ -97,7 +98,8 @@ def run_ids_everywhere(a):
 
 
 def two_runs_at_once():
-    """A run in progress holds its lock: a second run into its directory is refused; SIGTERM releases it."""
+    """A run in progress holds its lock: a second run into its directory is refused; SIGTERM releases it;
+    after SIGKILL (no clean-up; as MPI_Abort from another rank ends rank 0) the next run takes it over."""
     busy = os.path.join(work, "busy")
     args = [exe, deck, *common, "grid.nx=64", "grid.ny=64", "run.t_end=1000", "output.checkpoint_every=0", "run.progress_interval=1",
             f"output.dir={busy}"]
@@ -112,6 +114,17 @@ def two_runs_at_once():
     proc.communicate(timeout=120)
     checks.check(proc.returncode == INTERRUPTED, f"the first run ends by SIGTERM (exit {proc.returncode})")
     checks.check(not os.path.exists(os.path.join(busy, "run.lock")), "SIGTERM: the lock file is removed")
+    proc = subprocess.Popen([*args, "output.overwrite=true"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, env=dict(os.environ, **MPI_ENV))
+    for line in proc.stdout:
+        if line.startswith("step"):
+            break
+    proc.kill()
+    proc.communicate(timeout=120)
+    checks.check(os.path.exists(os.path.join(busy, "run.lock")), "SIGKILL: the lock file is left behind")
+    case("a run after one killed by SIGKILL", [exe, deck, *common, f"output.dir={busy}", "output.overwrite=true"], 0,
+         [f"taking over the lock file '{busy}/run.lock' of pid {proc.pid} on host",
+          "that run has ended without removing it", "finished"])
 
 
 def locks(a):
