@@ -117,14 +117,23 @@ class Validator {
     }
     // Parse the value as TOML; a bare word that is not valid TOML is taken as a string.
     toml::table parsed;
+    bool bare_word = false;
     try {
       parsed = toml::parse("v = " + raw);
     } catch (const toml::parse_error&) {
       parsed = toml::table{};
       parsed.insert("v", raw);
+      bare_word = true;
     }
     if (std::find(tables_present_.begin(), tables_present_.end(), table) == tables_present_.end())
       tables_present_.push_back(table);
+    const KeySpec* spec = schema_.find_key(table, key);
+    if (bare_word && spec && spec->type() != ValueType::String) {
+      errors_.push_back(where + ": key '" + spec->dotted() + "': '" + raw + "' is not a TOML value (expected " +
+                        expected_text(*spec) + "; a number beyond the range of a double, or malformed?)");
+      rejected_.push_back(spec->dotted());
+      return;
+    }
     add(table, key, *parsed.get("v"), where);
   }
 
@@ -231,20 +240,25 @@ Deck Deck::parse(const std::string& text, const std::string& source_name, const 
     deck.units_[spec.dotted()] = spec.unit_text();
   }
   std::vector<std::string> errors = v.errors();
-  for (const auto& e : deck.check_rules()) errors.push_back(e);
+  for (const auto& e : deck.check_rules(errors.size())) errors.push_back(e);
   if (!errors.empty()) throw DeckError(error_report(source_name, errors));
   return deck;
 }
 
-std::vector<std::string> Deck::check_rules() const {
+std::vector<std::string> Deck::check_rules(std::size_t earlier_errors) const {
   DeckCheck check(*this);
+  std::string unguarded;
   for (const auto& rule : schema_->rules()) {
     try {
       rule(*this, check);
     } catch (const RejectedKey&) {
       // The rule reads a key whose own error is already reported.
+    } catch (const InactiveTable& e) {
+      if (unguarded.empty()) unguarded = e.what();
     }
   }
+  if (!unguarded.empty() && earlier_errors == 0 && check.errors().empty())
+    throw std::logic_error(unguarded + ", and no error reports that table missing (the rule needs a has_table guard)");
   return check.errors();
 }
 
@@ -269,12 +283,13 @@ bool Deck::has(const std::string& dotted) const { return values_.count(dotted) >
 const Value& Deck::value(const std::string& dotted, ValueType type) const {
   if (std::find(rejected_.begin(), rejected_.end(), dotted) != rejected_.end())
     throw RejectedKey("deck key '" + dotted + "' has no valid value");
+  const auto dot = dotted.find('.');
+  const KeySpec* spec = schema_->find_key(dotted.substr(0, dot), dotted.substr(dot + 1));
   const auto it = values_.find(dotted);
+  if (it == values_.end() && spec && !has_table(dotted.substr(0, dot)))
+    throw InactiveTable("deck key '" + dotted + "' is read but the deck has no table [" + dotted.substr(0, dot) + "]");
   if (it == values_.end())
     throw std::logic_error("deck key '" + dotted + "' is not declared or its table is not active");
-  const KeySpec* spec = nullptr;
-  const auto dot = dotted.find('.');
-  spec = schema_->find_key(dotted.substr(0, dot), dotted.substr(dot + 1));
   if (!spec || spec->type() != type)
     throw std::logic_error("deck key '" + dotted + "' read as " + type_name(type) + " but declared otherwise");
   return it->second;

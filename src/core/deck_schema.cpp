@@ -39,11 +39,22 @@ std::string value_to_toml(const Value& value) {
       if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
       return text;
     }
-    std::string operator()(const std::string& s) const {
+    std::string operator()(const std::string& s) const {  // a TOML basic string, control characters escaped
       std::string out = "\"";
-      for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
+      for (const char c : s) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\')
+          out += std::string("\\") + c;
+        else if (c == '\n')
+          out += "\\n";
+        else if (c == '\t')
+          out += "\\t";
+        else if (c == '\r')
+          out += "\\r";
+        else if (byte < 0x20 || byte == 0x7f)
+          out += logging::format("\\u%04x", byte);
+        else
+          out += c;
       }
       return out + "\"";
     }

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mote/core/deck_schema.hpp"
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/runtime.hpp"
@@ -36,6 +37,14 @@ bool looks_like_key(const std::string& arg) {
          std::filesystem::path(arg).extension() != ".toml";
 }
 
+/// A core::DeckError if `override` sets a key that one of `earlier` already sets.
+void refuse_repeated_key(const std::vector<std::string>& earlier, const std::string& override) {
+  const std::string key = override.substr(0, override.find('='));
+  for (const auto& e : earlier)
+    if (e.substr(0, e.find('=')) == key)
+      throw core::DeckError("key '" + key + "' set twice on the command line ('" + e + "' and '" + override + "')");
+}
+
 CommandLine parse_command_line(int argc, char** argv) {
   CommandLine cl;
   for (int i = 1; i < argc; ++i) {
@@ -45,13 +54,18 @@ CommandLine parse_command_line(int argc, char** argv) {
     } else if (arg == "--force") {
       cl.force = true;
     } else if (arg == "--restart") {
-      if (i + 1 >= argc) throw core::DeckError("--restart needs a checkpoint file or 'latest'");
+      if (i + 1 >= argc || std::string(argv[i + 1]).rfind("-", 0) == 0)
+        throw core::DeckError(
+            "--restart needs a checkpoint file or 'latest' (a file whose name starts with '-' "
+            "as ./NAME)");
+      if (cl.restart) throw core::DeckError("--restart given twice ('" + *cl.restart + "' and '" + argv[i + 1] + "')");
       cl.restart = argv[++i];
     } else if (arg.rfind("--kokkos", 0) == 0) {
       continue;  // left for Kokkos
     } else if (arg.rfind("-", 0) == 0) {
       throw core::DeckError("unknown option '" + arg + "' (see --help)");
     } else if (arg.find('=') != std::string::npos) {
+      refuse_repeated_key(cl.overrides, arg);
       cl.overrides.push_back(arg);
     } else if (looks_like_key(arg)) {
       throw core::DeckError("'" + arg + "' is not a file; an override needs a value: " + arg + "=VALUE");
@@ -130,16 +144,6 @@ int stop_after(const std::exception& error, const core::Comm& comm) {
   comm.abort(code);
 }
 
-/// `text` as a TOML basic string.
-std::string toml_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
-
 /// The deck of a restart from `checkpoint` without a deck argument: the stored
 /// one, writing beside the checkpoint (never into its output.dir resolved from
 /// the current directory) and without its stop condition run.max_steps; the
@@ -153,7 +157,8 @@ core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, con
     throw core::DeckError("cannot read the deck stored in checkpoint '" + checkpoint + "': " + e.what());
   }
   const auto dir = std::filesystem::absolute(checkpoint).parent_path().lexically_normal();
-  std::vector<std::string> overrides = {"output.dir=" + toml_string(dir.string()), "run.max_steps=0"};
+  std::vector<std::string> overrides = {"output.dir=" + core::value_to_toml(core::Value(dir.string())),
+                                        "run.max_steps=0"};
   overrides.insert(overrides.end(), cl.overrides.begin(), cl.overrides.end());
   return core::Deck::parse(text, "deck of " + checkpoint, schema, overrides);
 }
@@ -204,7 +209,9 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
     } else if (cl.restart && *cl.restart != "latest") {
       deck = stored_deck(*cl.restart, cl, schema, comm);
     } else {
-      throw core::DeckError("no deck given (see --help)");
+      throw core::DeckError(cl.restart ? "--restart latest needs the deck, whose output.dir holds the checkpoints "
+                                         "(or give a checkpoint file instead of 'latest')"
+                                       : "no deck given (see --help)");
     }
     if (cl.force && !cl.restart) throw core::DeckError("--force is only for restarts (--restart)");
     if (cl.restart) {

@@ -64,6 +64,25 @@ constexpr double kDefaultDtMinFraction = 1e-12;
 
 double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+/// output.dir: not empty, and neither it nor the nearest of its parents that exists is a file.
+void check_output_dir(const core::Deck& d, core::DeckCheck& check) {
+  namespace fs = std::filesystem;
+  const std::string& dir = d.string("output.dir");
+  if (dir.empty()) {
+    check.fail("output.dir", "must name a directory (it is empty)");
+    return;
+  }
+  for (fs::path p(dir); !p.empty(); p = p.parent_path()) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(p, ec);
+    if (fs::exists(status)) {
+      if (!fs::is_directory(status)) check.fail("output.dir", "'" + p.string() + "' exists and is not a directory");
+      return;
+    }
+    if (p == p.parent_path()) return;
+  }
+}
+
 /// output.snapshot_times: increasing, and not together with output.snapshot_dt.
 void check_snapshot_times(const core::Deck& d, core::DeckCheck& check) {
   const auto& times = d.real_array("output.snapshot_times");
@@ -142,6 +161,7 @@ void RunSettings::declare(core::DeckSchema& schema) {
           "Times of the snapshots after the initial one, increasing (e.g. logarithmic in time); the final snapshot "
           "at run.t_end is always written. Excludes output.snapshot_dt.");
   schema.rule(check_snapshot_times);
+  schema.rule(check_output_dir);
   schema.integer("output.checkpoint_every")
       .restart_mutable()
       .int64()

@@ -63,6 +63,32 @@ checks.check(not os.path.exists(out), "bad override: no output directory created
 # Inconsistent values found by the problem itself are reported the same way.
 p = run([exe, good, "grid.x_max=-1"], expect=None)
 checks.check(p.returncode == 2 and "x_max" in p.stderr and not os.path.exists(out), "inconsistent grid: exit 2, no output")
+# Command lines and output directories refused before any work (exit 2), each naming what is wrong.
+a_file = os.path.join(work, "a_file")
+with open(a_file, "w") as f:
+    f.write("not a directory\n")
+command_lines = {
+    "--restart before another flag": ([good, "--restart", "--check"], "--restart needs a checkpoint file or 'latest'"),
+    "--restart twice": ([good, "--restart", "a.h5", "--restart", "b.h5"], "--restart given twice ('a.h5' and 'b.h5')"),
+    "a key set twice": ([good, "grid.nx=32", "grid.nx=64"],
+                        "key 'grid.nx' set twice on the command line ('grid.nx=32' and 'grid.nx=64')"),
+    "--restart latest without a deck": (["--restart", "latest"], "--restart latest needs the deck"),
+    "empty output.dir": ([good, "output.dir="], "key 'output.dir': must name a directory (it is empty)"),
+    "output.dir a file": ([good, f"output.dir={a_file}"], f"key 'output.dir': '{a_file}' exists and is not a directory"),
+    "output.dir inside a file": ([good, f"output.dir={a_file}/run"],
+                                 f"key 'output.dir': '{a_file}' exists and is not a directory"),
+    "a number beyond double": ([good, "run.t_end=1e400"], "key 'run.t_end': '1e400' is not a TOML value"),
+}
+for name, (args, expected) in command_lines.items():
+    for check_only in ([], ["--check"]):
+        if check_only and "--check" in args:
+            continue
+        p = run([exe, *args, *check_only], expect=None, cwd=work)
+        checks.check(p.returncode == 2 and expected in p.stderr,
+                     f"{name}{' (--check)' if check_only else ''}: exit {p.returncode} == 2, message {expected!r}" +
+                     ("" if expected in p.stderr else f"\n{p.stderr[-1500:]}"))
+checks.check(not os.path.exists(out) and sorted(os.listdir(work)) == sorted(
+    [n + ".toml" for n in cases] + ["good.toml", "a_file"]), "refused command lines: nothing written")
 # The good deck runs.
 run([exe, good])
 checks.check(os.path.exists(os.path.join(out, "snapshot_00001.h5")), "good deck: runs and writes snapshots")

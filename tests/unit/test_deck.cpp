@@ -110,6 +110,13 @@ TEST(Deck, CommandLineOverrides) {
   const auto msg = error_of("[grid]\nlength = 1.0\n", {"grid.nx=-3"});
   EXPECT_NE(msg.find("command line 'grid.nx=-3'"), std::string::npos) << msg;
   EXPECT_NE(error_of("[grid]\nlength = 1.0\n", {"nx=3"}).find("table.key=value"), std::string::npos);
+  // A value that is not TOML is a string only for a string key: for a number it is named as not a value.
+  const auto huge = error_of("[grid]\nlength = 1.0\n", {"grid.length=1e400"});
+  EXPECT_NE(huge.find("command line 'grid.length=1e400': key 'grid.length': '1e400' is not a TOML value (expected "
+                      "real > 0 [cm]"),
+            std::string::npos)
+      << huge;
+  EXPECT_NE(huge.find("(1 error)"), std::string::npos) << huge;  // not also "missing required key"
 }
 
 TEST(Deck, SyntaxErrorAndUnreadableFile) {
@@ -130,6 +137,17 @@ TEST(Deck, ResolvedDeckReadsBackIdentically) {
   EXPECT_EQ(again.to_toml().substr(again.to_toml().find('\n')), d.to_toml().substr(d.to_toml().find('\n')));
   EXPECT_EQ(again.real("grid.length"), 0.1);  // exact round trip of reals
   EXPECT_EQ(again.real("dust.grain_size"), 3e-5);
+}
+
+// A string with control characters (a path with a newline, a tab, an escape) is written escaped, so
+// that the resolved deck each checkpoint stores reads back as the same value.
+TEST(Deck, StringsWithControlCharactersReadBackIdentically) {
+  auto schema = make_schema();
+  schema.string("grid.label").default_value(std::string());
+  const std::string label = std::string("a\nb\tc\"d\\e\x01f\x7fg\rh") + "\xc3\xa9";
+  const auto d = Deck::parse("[grid]\nlength = 1\n", "t.toml", schema, {"grid.label=" + label});
+  EXPECT_EQ(d.string("grid.label"), label);
+  EXPECT_EQ(Deck::parse(d.to_toml(), "resolved", schema).string("grid.label"), label);
 }
 
 TEST(DeckSchema, EditDistanceAndHelp) {
@@ -224,6 +242,36 @@ TEST(Deck, CrossKeyRulesReportEveryErrorWithItsLine) {
   EXPECT_NE(with_bad_key.find("(2 errors)"), std::string::npos) << with_bad_key;  // nx's own, and the length rule
   EXPECT_NE(with_bad_key.find("test.toml:3: key 'grid.length': must exceed 1"), std::string::npos) << with_bad_key;
   EXPECT_EQ(with_bad_key.find("grid.sizes"), std::string::npos) << with_bad_key;
+}
+
+// A rule that reads a key of an optional table the deck lacks is skipped where the missing table is
+// reported (whatever the rules' order), and is a logic error (a missing has_table guard) where nothing
+// reports it: the fld_benchmarks deck without [radiation] ended in std::terminate before.
+TEST(Deck, RuleReadingAnAbsentOptionalTableIsSkippedWhenTheTableIsReported) {
+  const auto reads_dust = [](const Deck& d, mote::core::DeckCheck& check) {
+    if (d.integer("grid.nx") > 10 && d.real("dust.grain_size") > 1.0) check.fail("dust.grain_size", "too big");
+  };
+  const auto requires_dust = [](const Deck& d, mote::core::DeckCheck& check) {
+    if (!d.has_table("dust")) check.fail_missing_table("dust", "the test needs it");
+  };
+  for (const bool reader_first : {true, false}) {
+    auto schema = make_schema();
+    if (reader_first) schema.rule(reads_dust);
+    schema.rule(requires_dust);
+    if (!reader_first) schema.rule(reads_dust);
+    std::string why;
+    try {
+      Deck::parse("[grid]\nlength = 1\n", "test.toml", schema);
+    } catch (const DeckError& e) {
+      why = e.what();
+    }
+    EXPECT_NE(why.find("test.toml: missing table [dust]: the test needs it"), std::string::npos) << why;
+    EXPECT_EQ(why.find("errors)"), std::string::npos) << why;  // one error
+  }
+  auto unguarded = make_schema();
+  unguarded.rule(reads_dust);
+  EXPECT_THROW(Deck::parse("[grid]\nlength = 1\n", "test.toml", unguarded), std::logic_error);
+  EXPECT_NO_THROW(Deck::parse("[grid]\nlength = 1\n[dust]\ngrain_size = 0.5\n", "test.toml", unguarded));
 }
 
 TEST(ExitCodes, FollowTheKindOfFailure) {

@@ -63,9 +63,16 @@ class Deck {
   struct RejectedKey : std::logic_error {
     using std::logic_error::logic_error;
   };
+  /// Thrown when a rule reads a declared key of an optional table the deck does not have: that
+  /// rule is skipped where another error (the missing table, from DeckCheck::fail_missing_table)
+  /// is reported; a logic error (the rule needs a has_table guard) where none is.
+  struct InactiveTable : std::logic_error {
+    using std::logic_error::logic_error;
+  };
   friend class DeckCheck;
   const Value& value(const std::string& dotted, ValueType type) const;
-  std::vector<std::string> check_rules() const;
+  /// The rules' errors; `earlier_errors` counts the keys' own.
+  std::vector<std::string> check_rules(std::size_t earlier_errors) const;
   std::string source_;
   std::vector<std::string> active_tables_;
   std::map<std::string, Value> values_;
