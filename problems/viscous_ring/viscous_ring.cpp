@@ -37,7 +37,7 @@ void check_self_similar(const mote::core::Deck& d, mote::core::DeckCheck& check)
 }
 
 void declare(mote::core::DeckSchema& s) {
-  mote::disc::GasSimulation::declare(s);
+  mote::disc::GasSimulation::declare_with_boundary_values(s);
   s.rule(check_self_similar);
 }
 

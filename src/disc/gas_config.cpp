@@ -39,7 +39,7 @@ GasBoundary gas_boundary(const std::string& name) {
   throw core::DeckError("unknown gas boundary '" + name + "' (closed, zero_torque, extrapolate, user)");
 }
 
-void GasConfig::declare(core::DeckSchema& s) {
+void GasConfig::declare(core::DeckSchema& s, bool problem_boundary_values) {
   s.table("star", "The central star.");
   if (!s.find_key("star", "mass"))
     s.real("star.mass").default_value(1.0).greater_than(0.0).unit("M_sun").doc("Stellar mass M_star.");
@@ -107,13 +107,15 @@ void GasConfig::declare(core::DeckSchema& s) {
       .default_value(std::string("viscous"))
       .one_of({"viscous", "zero"})
       .doc("Gas v_R: viscous (eq. 28-31) or zero (a static disc, as RBO24's transition disc of sec. 7).");
-  const std::vector<std::string> bcs = {"closed", "zero_torque", "extrapolate", "user"};
+  std::vector<std::string> bcs = {"closed", "zero_torque", "extrapolate"};
+  if (problem_boundary_values) bcs.emplace_back("user");
   s.string("gas.inner_boundary")
       .default_value(std::string("extrapolate"))
       .one_of(bcs)
       .doc(
           "Viscous boundary at R_in: closed (no mass flux), zero_torque (nu Sigma = 0), extrapolate "
-          "(R^1/2 nu Sigma continued as a limited power law: steady flow passes), user (problem hook).");
+          "(R^1/2 nu Sigma continued as a limited power law: steady flow passes), user (ghost Sigma from the "
+          "problem: viscous_ring's similarity solution; offered by such problems only).");
   s.string("gas.outer_boundary")
       .default_value(std::string("extrapolate"))
       .one_of(bcs)

@@ -3,6 +3,7 @@
 #include "mote/disc/gas_disc.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 #include "mote/core/loops.hpp"
@@ -70,11 +71,12 @@ void GasDisc::set_temperature(const RealView2& T) {
 void GasDisc::fill_sigma_ghosts(double time) {
   sigma_time_ = time;
   gas_fill_sigma_ghosts(grid_, halo_, cfg_.inner, cfg_.outer, gas_.Sigma);
+  if (cfg_.inner != GasBoundary::User && cfg_.outer != GasBoundary::User) return;
+  if (!boundary_values_)  // decided from the deck alone: every rank throws together
+    throw std::logic_error("gas boundary \"user\" without GasDisc::set_boundary_values (the problem declares them)");
   const bool user_in = grid_.has_inner_boundary() && cfg_.inner == GasBoundary::User;
   const bool user_out = grid_.has_outer_boundary() && cfg_.outer == GasBoundary::User;
   if (!user_in && !user_out) return;
-  if (!boundary_values_)
-    throw core::DeckError("gas.inner_boundary or gas.outer_boundary = \"user\" needs boundary values from the problem");
   const int ng = grid_.ng, ie = grid_.i_end();
   auto ghost = user_ghosts_;
   auto host = user_ghosts_h_;

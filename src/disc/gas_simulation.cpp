@@ -12,6 +12,11 @@ void GasSimulation::declare(core::DeckSchema& schema) {
   GasDisc::declare(schema);
 }
 
+void GasSimulation::declare_with_boundary_values(core::DeckSchema& schema) {
+  mesh::GridSpec::declare(schema);
+  GasDisc::declare(schema, /*problem_boundary_values=*/true);
+}
+
 GasSimulation::GasSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units)
     : units_(units),
       grid_(std::make_unique<mesh::Grid>(mesh::GridSpec::from_deck(deck), comm)),

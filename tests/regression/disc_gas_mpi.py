@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Gas disc on 2 MPI ranks (radial slabs) reproduces 1 rank bit for bit (the
 slabs change no arithmetic), and a 2-rank checkpoint restarts on 1 rank
-identically.
+identically. The "user" gas boundary is refused on 2 ranks by a problem that
+supplies no boundary values (exit 2 naming the key; before, the boundary rank
+threw alone at the first gas step and the other rank waited for it forever).
 
 usage: disc_gas_mpi.py VISCOUS_RING_EXE DISC_HYDROSTATIC_EXE WORKDIR MPIEXEC [ARGS ...]
 """
@@ -11,7 +13,7 @@ import sys
 
 import numpy as np
 
-from harness import Checks, run
+from harness import MPI_ENV, Checks, run, run_within
 import mote
 
 ring_exe, hydro_exe, work, launcher = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
@@ -44,4 +46,12 @@ for name, (exe, deck, common) in cases.items():
         bitwise = x.tobytes() == y.tobytes()
         checks.check(bitwise, f"{name} {key}: 2 ranks vs 1 rank bit for bit (max rel diff {diff:.1e})")
         checks.check(x.tobytes() == z.tobytes(), f"{name} {key}: 2-rank checkpoint restarted on 1 rank identical")
+hydro_deck = os.path.join(root, "disc_hydrostatic", "disc_hydrostatic.toml")
+for side in ("inner", "outer"):
+    rc, out = run_within([*launcher, hydro_exe, hydro_deck, f"gas.{side}_boundary=user",
+                          f"output.dir={os.path.join(work, 'user_' + side)}"], 120, env=dict(os.environ, **MPI_ENV))
+    expected = f"key 'gas.{side}_boundary'"
+    checks.check(rc == 2 and expected in out and '"closed", "zero_torque", "extrapolate"' in out,
+                 f"disc_hydrostatic, gas.{side}_boundary = user on 2 ranks: exit {rc} == 2 naming the key" +
+                 ("" if rc == 2 and expected in out else f"\n{out[-1500:]}"))
 sys.exit(checks.finish())

@@ -63,8 +63,9 @@ struct GasConfig {
 
   StellarGravity gravity() const { return {GM, thin_disc_gravity}; }
 
-  /// Tables [gas] and [star] (star.mass in M_sun).
-  static void declare(core::DeckSchema& schema);
+  /// Tables [gas] and [star] (star.mass in M_sun). The boundary choice "user" (ghost Sigma from
+  /// GasDisc::set_boundary_values) is offered only to a problem that supplies those values.
+  static void declare(core::DeckSchema& schema, bool problem_boundary_values = false);
   static GasConfig from_deck(const core::Deck& deck, const units::UnitSystem& units);
   /// Fills the derived values (cs2_ref, cs2_to_T, nu0 when <= 0) from the others;
   /// `h_ref` > 0 sets the temperature from the aspect ratio instead of T_ref.

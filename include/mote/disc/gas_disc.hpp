@@ -37,8 +37,10 @@ class GasDisc {
   /// Sigma at radius R and time t, for the ghost cells of "user" boundaries.
   using BoundaryValues = std::function<double(double R, double time)>;
 
-  /// Tables [gas] and [star].
-  static void declare(core::DeckSchema& schema) { GasConfig::declare(schema); }
+  /// Tables [gas] and [star]; "user" boundaries for a problem that calls set_boundary_values.
+  static void declare(core::DeckSchema& schema, bool problem_boundary_values = false) {
+    GasConfig::declare(schema, problem_boundary_values);
+  }
 
   GasDisc(const core::Deck& deck, const mesh::Grid& grid, const units::UnitSystem& units);
   GasDisc(const GasConfig& config, const mesh::Grid& grid, const units::UnitSystem& units);

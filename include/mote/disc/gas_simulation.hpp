@@ -20,6 +20,8 @@ class GasSimulation : public io::Simulation {
  public:
   /// Tables [grid], [gas], [star].
   static void declare(core::DeckSchema& schema);
+  /// The same, with the "user" gas boundaries, for a problem that calls GasDisc::set_boundary_values.
+  static void declare_with_boundary_values(core::DeckSchema& schema);
   GasSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units);
 
   GasDisc& gas() { return *gas_; }
