@@ -8,6 +8,7 @@
 // where the stellar optical depth is below thin_tau, and checks the energy
 // balance of the absorbed starlight.
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "mote/core/exit_codes.hpp"
@@ -92,6 +93,7 @@ class IrradiatedDisc : public io::Simulation {
     heat_capacity(rho_gas_, c_V, fields_.heat_capacity);
     Kokkos::deep_copy(state_.T, deck.real("irradiation.T_init"));
     Kokkos::deep_copy(state_.E, 0.0);
+    open_luminosity_ = fld_.open_boundary_luminosity(state_);
   }
 
   double max_dt() override { return t_end_; }
@@ -99,14 +101,16 @@ class IrradiatedDisc : public io::Simulation {
 
   void advance(double, double dt) override {
     try {
-      if (steady_ && !relaxed_) {
+      if (steady_ && relaxed_) return;  // nothing left to solve
+      if (steady_) {
         relaxation_ = fld_.relax_to_steady_state(fields_, state_);
         relaxed_ = true;
         logging::info("radiation: steady state after ", relaxation_.solves, " solves, ", relaxation_.iterations,
                       " BiCGStab iterations, ", relaxation_.solve_seconds, " s in the linear solver");
-      } else if (!steady_) {
+      } else {
         logging::info("radiation: ", fld_.step(dt, fields_, state_).summary());
       }
+      open_luminosity_ = fld_.open_boundary_luminosity(state_);
     } catch (const std::runtime_error& e) {
       throw core::NumericalError(e.what());
     }
@@ -125,16 +129,25 @@ class IrradiatedDisc : public io::Simulation {
   void save_state(io::H5File& file) const override {
     radiation::write_fld_state(file, "/state/radiation", grid_, state_);
     file.write_attribute("/state", "relaxed", relaxed_ ? 1.0 : 0.0);
+    file.write_attribute("/state", "open_luminosity", open_luminosity_);
   }
 
   void load_state(const io::H5File& file) override {
     radiation::read_fld_state(file, "/state/radiation", grid_, state_);
     relaxed_ = file.read_attribute_real("/state", "relaxed") > 0.5;
+    // The luminosity of the last solve, with that solve's coefficients (the solver's own are set up
+    // anew here: a steady run makes no solve after its restart).
+    if (file.has_attribute("/state", "open_luminosity")) {
+      open_luminosity_ = file.read_attribute_real("/state", "open_luminosity");
+    } else {
+      open_luminosity_ = std::numeric_limits<double>::quiet_NaN();
+      logging::warn("the checkpoint predates its stored open_luminosity: the history gives nan until the next solve");
+    }
   }
 
   std::vector<io::Diagnostic> diagnostics() const override {
     return {{"absorbed_star", radiation::absorbed_power(grid_, fields_)},
-            {"open_luminosity", fld_.open_boundary_luminosity(state_)},
+            {"open_luminosity", open_luminosity_},
             {"steady_solves", double(relaxation_.solves)},
             {"fld_iterations", double(relaxation_.iterations)},
             {"fld_solve_s", relaxation_.solve_seconds}};
@@ -154,6 +167,7 @@ class IrradiatedDisc : public io::Simulation {
   units::UnitSystem units_;
   double t_end_;
   bool steady_, relaxed_ = false;
+  double open_luminosity_ = 0.0;  // through the open sides after the last solve (history)
   radiation::FldSolver::Relaxation relaxation_;
   radiation::RadiationDeck rd_;
   mesh::Grid grid_;

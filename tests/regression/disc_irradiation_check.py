@@ -2,7 +2,7 @@
 """disc_irradiation: VALIDATION D2 from the shipped deck, through the problem's
 own check (T within 1 % of T_star (R_star / 2r)^(1/2) in every optically thin
 cell), the same for a stratified disc, a restart from its checkpoint that must reproduce the steady state
-bit for bit, and the refusal of radiation.band_means = "local".
+(and the history's open-side luminosity) bit for bit, and the refusal of radiation.band_means = "local".
 
 usage: disc_irradiation_check.py EXE WORKDIR
 """
@@ -69,6 +69,12 @@ checks.check(int(steps[-1]) == 2, f"the restarted run took step 2 (last history 
 a = mote.read_snapshot(first[-1]).fields["T"]
 b = mote.last_snapshot(restarted).fields["T"]
 checks.check(np.array_equal(a, b), "restart from the step-1 checkpoint reproduces T bit for bit")
+# The history's open-side luminosity after the restart is the continuous run's (it was recomputed from
+# the solver's set-up coefficients, D = 1, and on several ranks from an E halo of zeros).
+lum_cont = mote.read_history(os.path.join(both, "history.txt"))["open_luminosity"]
+lum_rest = mote.read_history(os.path.join(restarted, "history.txt"))["open_luminosity"]
+checks.check(lum_rest[-1] == lum_cont[-1] and lum_cont[-1] > 0,
+             f"restarted history: open_luminosity at step 2 {lum_rest[-1]:.17g} == {lum_cont[-1]:.17g}")
 local = os.path.join(work, "local_band_means")
 shutil.rmtree(local, ignore_errors=True)
 c = run([exe, deck, f"output.dir={local}", 'radiation.band_means="local"'], expect=None)
