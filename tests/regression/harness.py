@@ -64,6 +64,15 @@ def run_within(cmd, time_limit, **kw):
         return None, p.communicate()[0] + f"\n(killed after {time_limit} s)"
 
 
+def with_ranks(launcher, ranks):
+    """The MPI launcher (e.g. mpiexec -n 2 --oversubscribe) with its rank count replaced by `ranks`."""
+    flags = ("-n", "-np", "--np", "-c", "--n")
+    out = [str(ranks) if i > 0 and launcher[i - 1] in flags else x for i, x in enumerate(launcher)]
+    if out == list(launcher):
+        raise ValueError(f"no rank count in the launcher {launcher}")
+    return out
+
+
 def run(cmd, expect=0, extra_env=None, **kw):
     """Runs cmd (list) with extra_env added to the environment; returns CompletedProcess; raises if the exit
     code differs from expect."""

@@ -2,7 +2,9 @@
 """The non-isothermal transition disc (dust, coagulation and the temperature
 solver on its adaptive schedule; RBO24 sec. 6-7, the CI deck) on 2 MPI ranks
 (radial slabs, the FLD system solved as one distributed system) matches 1 rank
-to the solver's tolerance, and a 2-rank checkpoint restarts on 1 rank to the
+to the solver's tolerance, and so do 3 ranks (a middle slab with neighbours on
+both sides: its halos, FLD ghost columns and the stellar optical depth's
+pipeline through it); a 2-rank checkpoint restarts on 1 rank to the
 same state; with temperature.change_measure = "mean" (the mean over the cells
 of both slabs) 2 ranks take the same schedule as 1.
 
@@ -14,7 +16,7 @@ import sys
 
 import numpy as np
 
-from harness import Checks, run
+from harness import Checks, run, with_ranks
 import mote
 
 exe, work, launcher = sys.argv[1], sys.argv[2], sys.argv[3:]
@@ -25,14 +27,17 @@ TOLERANCE = 1e-9  # the FLD solver's (the deck has 1e-6)
 # Exact lagged solves: with the default inexact ones the two rank counts reach
 # the steady state along different paths and agree only to its target.
 common = [f"radiation.tolerance={TOLERANCE}", "temperature.steady_forcing=0", "run.progress_interval=100"]
-one, two, mixed = (os.path.join(work, d) for d in ("one", "two", "mixed"))
+one, two, three, mixed = (os.path.join(work, d) for d in ("one", "two", "three", "mixed"))
 run([exe, deck, *common, f"output.dir={one}"])
 run(launcher + [exe, deck, *common, f"output.dir={two}"])
+run(with_ranks(launcher, 3) + [exe, deck, *common, f"output.dir={three}"])
 run(launcher + [exe, deck, *common, "run.max_steps=60", f"output.dir={mixed}"])
 run([exe, "--restart", "latest", deck, *common, f"output.dir={mixed}"])
 checks = Checks()
 a, b, c = mote.last_snapshot(one), mote.last_snapshot(two), mote.last_snapshot(mixed)
-checks.check(a.step == b.step == c.step and a.step > 100, f"same number of steps ({a.step}, {b.step}, {c.step})")
+t = mote.last_snapshot(three)
+checks.check(a.step == b.step == c.step == t.step and a.step > 100,
+             f"same number of steps ({a.step}, {b.step}, {c.step}, 3 ranks {t.step})")
 
 
 def largest_difference(x, y, names):
@@ -48,7 +53,7 @@ def temperature_difference(x, y):
 
 
 names = [n for n in a.fields if n.startswith(("dust_", "gas_", "rad_"))]
-for label, other in (("2 ranks", b), ("2-rank checkpoint restarted on 1 rank", c)):
+for label, other in (("2 ranks", b), ("3 ranks", t), ("2-rank checkpoint restarted on 1 rank", c)):
     dT, d = temperature_difference(a, other), largest_difference(a, other, names)
     checks.check(dT <= 100 * TOLERANCE, f"{label}: T within {dT:.2e} of 1 rank in every cell (<= {100 * TOLERANCE:.0e})")
     checks.check(d <= 1e-6, f"{label}: {len(names)} dust, gas and radiation fields within {d:.2e} of 1 rank (<= 1e-6)")
