@@ -19,7 +19,9 @@ A tag repeated within one header type is one entry, an array of its values
 (npartoftype, massoftype); a tag that appears again under a later type
 (Phantom writes nparttot as default int and as int*8) keeps its first
 values. A tag repeated among the particle arrays (one "dustfrac" per dust
-species) is one array of shape (n, repeats). Array block 1 of each MPI
+species) is one array of shape (n, repeats). The per-species values keep
+their species axis with one species too: "dustfrac" (and Phantom's tstop,
+deltavx/y/z) is (n, N), "grainsize" and "graindens" arrays of N values. Array block 1 of each MPI
 block holds the particles (concatenated over the MPI blocks), block 2 the
 sink particles (`sinks`); other blocks are not read.
 """
@@ -30,6 +32,8 @@ import numpy as np
 
 MAGIC_I1, MAGIC_I2, MAGIC_I3 = 60769, 60878, 690706
 TAG_LENGTH = 16
+PER_SPECIES_ARRAYS = {"dustfrac", "tstop", "deltavx", "deltavy", "deltavz"}
+PER_SPECIES_HEADER = {"grainsize", "graindens"}
 # the 8 types after the two default ones are resolved: dtype per type index
 FIXED_TYPES = {1: "<i1", 2: "<i2", 3: "<i4", 4: "<i8", 6: "<f4", 7: "<f8"}
 
@@ -93,7 +97,7 @@ def _read_header(records, dtypes):
         for tag, value in zip(tags, values):
             block.setdefault(tag, []).append(value)
         for tag, vals in block.items():
-            header.setdefault(tag, vals[0] if len(vals) == 1 else np.array(vals))
+            header.setdefault(tag, vals[0] if len(vals) == 1 and tag not in PER_SPECIES_HEADER else np.array(vals))
     return header
 
 
@@ -104,7 +108,8 @@ def _read_block(records, length, counts, dtypes):
         for _ in range(count):
             (tag,) = _tags(records.next())
             columns.setdefault(tag, []).append(np.frombuffer(records.next(), dtype, length))
-    return {tag: c[0] if len(c) == 1 else np.stack(c, axis=1) for tag, c in columns.items()}
+    return {tag: c[0] if len(c) == 1 and tag not in PER_SPECIES_ARRAYS else np.stack(c, axis=1)
+            for tag, c in columns.items()}
 
 
 def _join(parts):

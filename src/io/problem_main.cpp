@@ -26,7 +26,8 @@ struct CommandLine {
   std::vector<std::string> overrides;
   std::optional<std::string> restart;
   bool check_only = false;
-  bool force = false;  // accept a restart whose deck changes keys that may not change
+  bool force = false;                 // accept a restart whose deck changes keys that may not change
+  std::vector<std::string> warnings;  // said once the command line is read
 };
 
 /// True for an argument that reads as a deck key ("grid.nx") rather than a deck file.
@@ -37,12 +38,14 @@ bool looks_like_key(const std::string& arg) {
          std::filesystem::path(arg).extension() != ".toml";
 }
 
-/// A core::DeckError if `override` sets a key that one of `earlier` already sets.
-void refuse_repeated_key(const std::vector<std::string>& earlier, const std::string& override) {
+/// A warning if `override` sets a key that one of `earlier` already sets (the last applies, so that
+/// a script may follow its common overrides with particular ones); empty otherwise.
+std::string repeated_key_warning(const std::vector<std::string>& earlier, const std::string& override) {
   const std::string key = override.substr(0, override.find('='));
   for (const auto& e : earlier)
     if (e.substr(0, e.find('=')) == key)
-      throw core::DeckError("key '" + key + "' set twice on the command line ('" + e + "' and '" + override + "')");
+      return "key '" + key + "' set twice on the command line: '" + override + "' applies, not '" + e + "'";
+  return "";
 }
 
 CommandLine parse_command_line(int argc, char** argv) {
@@ -65,7 +68,7 @@ CommandLine parse_command_line(int argc, char** argv) {
     } else if (arg.rfind("-", 0) == 0) {
       throw core::DeckError("unknown option '" + arg + "' (see --help)");
     } else if (arg.find('=') != std::string::npos) {
-      refuse_repeated_key(cl.overrides, arg);
+      if (std::string w = repeated_key_warning(cl.overrides, arg); !w.empty()) cl.warnings.push_back(std::move(w));
       cl.overrides.push_back(arg);
     } else if (looks_like_key(arg)) {
       throw core::DeckError("'" + arg + "' is not a file; an override needs a value: " + arg + "=VALUE");
@@ -204,6 +207,8 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
   std::optional<std::string> restart;
   try {
     cl = parse_command_line(argc, argv);
+    if (comm.is_root())
+      for (const auto& w : cl.warnings) logging::warn(w);
     if (cl.deck_path) {
       deck = core::Deck::load(*cl.deck_path, schema, cl.overrides);
     } else if (cl.restart && *cl.restart != "latest") {

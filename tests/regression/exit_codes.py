@@ -91,8 +91,10 @@ def main():
 
     case("missing checkpoint", [pulse, good, "--restart", os.path.join(work, "checkpoint_00009.h5")], BAD_INPUT,
          ["cannot restart from checkpoint"])
-    case("output directory not writable", [pulse, good, "output.dir=/dev/null/out"], IO_ERROR,
-         ["cannot create output directory '/dev/null/out'"])
+    case("output directory inside a file", [pulse, good, "output.dir=/dev/null/out"], BAD_INPUT,
+         ["key 'output.dir': '/dev/null' exists and is not a directory"])
+    case("output directory not writable", [pulse, good, "output.dir=/sys/mote_out"], IO_ERROR,
+         ["cannot create output directory '/sys/mote_out'"])
 
     p = case("--version", [pulse, "--version"], 0, ["mote "])
     checks.check(p.stdout.startswith("mote "), "--version: the first line is the version")

@@ -72,7 +72,7 @@ def expected_arrays(f, adiabatic):
         want["u"] = p["u"][...]
     if "dust_fraction" in p:
         eps = p["dust_fraction"][...]
-        want["dustfrac"] = eps if eps.ndim == 1 or eps.shape[1] > 1 else eps[:, 0]
+        want["dustfrac"] = eps.reshape(len(eps), -1)  # (n, N), one species included
     return want
 
 
