@@ -16,6 +16,10 @@
 
 namespace mote::sph {
 
+namespace {
+constexpr int kMassBlock = 64;  // particles per partial sum of the species masses
+}  // namespace
+
 OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   s_.validate();
   const int ns = s_.nspecies;
@@ -31,6 +35,10 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   d_tot = RealView1("sph::dust_dtot", n);
   uloc = RealView1("sph::dust_u", n);
   gforce = RealView2("sph::dust_gforce", n, dim);
+  mass_partial_ = RealView2("sph::dust_mass_partial", (n + kMassBlock - 1) / kMassBlock, ns);
+  mass_now_ = RealView1("sph::dust_species_mass", ns);
+  mass_ref_ = RealView1("sph::dust_mass_reference", ns);
+  projected_ = RealView1("sph::dust_projected_mass", 1);
   const SpeciesDrag drag = s_.species_drag("sph::dust");
   kdrag_ = drag.k_drag;
   size_ = drag.size;
@@ -72,29 +80,46 @@ void OneFluidDust::initialise(const Particles& p) {
   Kokkos::deep_copy(var_pred, var);
   Kokkos::deep_copy(dvar, 0.0);
   floored_mass_ = 0.0;
-  projected_mass_ = 0.0;
-  mass_ref_.clear();
+  Kokkos::deep_copy(projected_, 0.0);
+  reference_set_ = false;
+}
+
+Real OneFluidDust::projected_mass() const {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), projected_);
+  return h(0);
+}
+
+OneFluidDust::MassAccounts OneFluidDust::mass_accounts() const {
+  MassAccounts a{floored_mass_, projected_mass(), {}};
+  if (reference_set_) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), mass_ref_);
+    a.reference.assign(h.data(), h.data() + h.extent(0));
+  }
+  return a;
 }
 
 void OneFluidDust::restore_mass_accounts(const MassAccounts& a) {
   if (!a.reference.empty() && static_cast<int>(a.reference.size()) != s_.nspecies)
     throw std::invalid_argument("dust: the projection reference needs one mass per species");
   floored_mass_ = a.floored;
-  projected_mass_ = a.projected;
-  mass_ref_ = a.reference;
+  Kokkos::deep_copy(projected_, a.projected);
+  reference_set_ = !a.reference.empty();
+  if (reference_set_)
+    Kokkos::deep_copy(mass_ref_, Kokkos::View<const Real*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(
+                                     a.reference.data(), a.reference.size()));
 }
 
 bool OneFluidDust::projecting() const { return s_.project_mass && s_.variable == DustVariable::SqrtRhoEps; }
 
-std::vector<Real> OneFluidDust::species_mass(const Particles& p) const {
+void OneFluidDust::species_mass(const Particles& p) const {
   // Partial sums over blocks of particles (each block reads its rows of var once,
   // from cache), then over the blocks: deterministic, no atomics.
-  constexpr int kBlock = 64;
+  constexpr int kBlock = kMassBlock;
   const int ns = s_.nspecies, n = p.n, nblock = (n + kBlock - 1) / kBlock;
   const auto v = var;
   const auto m = p.m;
   const bool svar = s_.variable == DustVariable::SqrtRhoEps;
-  RealView2 partial("sph::dust_mass_partial", nblock, ns);
+  const auto partial = mass_partial_;
   par_for(
       "sph::dust_mass_blocks", 0, nblock, KOKKOS_LAMBDA(int b) {
         const int a1 = b * kBlock + kBlock < n ? b * kBlock + kBlock : n;
@@ -104,21 +129,50 @@ std::vector<Real> OneFluidDust::species_mass(const Particles& p) const {
           partial(b, j) = s;
         }
       });
-  RealView1 out("sph::dust_species_mass", ns);
+  const auto out = mass_now_;
   par_for(
       "sph::dust_mass_species", 0, ns, KOKKOS_LAMBDA(int j) {
         Real s = 0.0;
         for (int b = 0; b < nblock; ++b) s += partial(b, j);
         out(j) = s;
       });
-  auto h = Kokkos::create_mirror_view(out);
-  Kokkos::deep_copy(h, out);
-  return std::vector<Real>(h.data(), h.data() + ns);
+}
+
+void OneFluidDust::set_mass_reference() {
+  const auto now = mass_now_;
+  const auto ref = mass_ref_;
+  par_for(
+      "sph::dust_mass_reference", 0, s_.nspecies, KOKKOS_LAMBDA(int j) { ref(j) = now(j); });
+  reference_set_ = true;
+}
+
+void OneFluidDust::project_mass(const Particles& p) {
+  species_mass(p);
+  const auto now = mass_now_;
+  const auto ref = mass_ref_;
+  const auto projected = projected_;
+  const auto scale = mass_partial_;  // row 0 holds the scale factors (the partial sums are used up)
+  const int ns = s_.nspecies;
+  par_for(
+      "sph::dust_projection_scale", 0, 1, KOKKOS_LAMBDA(int) {
+        for (int j = 0; j < ns; ++j) {  // in species order: the running total's bits as before
+          scale(0, j) = now(j) > 0.0 ? math::sqrt(ref(j) / now(j)) : 1.0;
+          projected(0) += now(j) - ref(j);
+        }
+      });
+  const auto v = var;
+  par_for(
+      "sph::dust_project", 0, p.n, KOKKOS_LAMBDA(int a) {
+        for (int j = 0; j < ns; ++j) v(a, j) *= scale(0, j);
+      });
 }
 
 void OneFluidDust::kick_predict(const Particles& p, Real hdt) {
   // The reference is the mass of the first step after initialise() or a restart.
-  if (projecting() && mass_ref_.empty()) mass_ref_ = species_mass(p);
+  if (projecting() && !reference_set_) {
+    species_mass(p);
+    set_mass_reference();
+  }
   const auto v = var;
   const auto vp = var_pred;
   const auto dv = dvar;
@@ -154,20 +208,7 @@ Real OneFluidDust::kick(const Particles& p, Real hdt) {
       },
       removed);
   floored_mass_ += removed;
-  if (projecting()) {
-    const std::vector<Real> mass_end = species_mass(p);
-    RealView1 scale("sph::dust_projection", ns);
-    auto hs = Kokkos::create_mirror_view(scale);
-    for (int j = 0; j < ns; ++j) {
-      hs(j) = mass_end[j] > 0.0 ? std::sqrt(mass_ref_[j] / mass_end[j]) : 1.0;
-      projected_mass_ += mass_end[j] - mass_ref_[j];
-    }
-    Kokkos::deep_copy(scale, hs);
-    par_for(
-        "sph::dust_project", 0, p.n, KOKKOS_LAMBDA(int a) {
-          for (int j = 0; j < ns; ++j) v(a, j) *= scale(j);
-        });
-  }
+  if (projecting()) project_mass(p);
   return removed;
 }
 
@@ -358,8 +399,10 @@ void OneFluidDust::save_state(const SphSystem&, io::H5File& f) const {
   f.write("/state/dust_dvar", block, host_rows(dvar).data());
   f.write_attribute("/state/dust_var", "stored", dust_storage(s_));
   f.write_attribute("/state/dust_var", "floored_mass", floored_mass_);
-  f.write_attribute("/state/dust_var", "projected_mass", projected_mass_);
-  if (!mass_ref_.empty()) f.write("/state/dust_mass_reference", io::Block::whole({ns}), mass_ref_.data());
+  const MassAccounts accounts = mass_accounts();
+  f.write_attribute("/state/dust_var", "projected_mass", accounts.projected);
+  if (!accounts.reference.empty())
+    f.write("/state/dust_mass_reference", io::Block::whole({ns}), accounts.reference.data());
 }
 
 void OneFluidDust::load_state(SphSystem&, const io::H5File& f) {

@@ -146,8 +146,8 @@ std::unique_ptr<disc::DiscSimulation> coupled_disc(int species) {
 }  // namespace
 
 /// PL15 sec. 4.1 dustywave, three species, amplitude 1e-4: no particle moves
-/// far enough for a rebuild.
-std::unique_ptr<sph::SphSimulation> dusty_wave() {
+/// far enough for a rebuild. `variable`: eps_j, or the S variable with its mass projection.
+std::unique_ptr<sph::SphSimulation> dusty_wave(sph::DustVariable variable = sph::DustVariable::Epsilon) {
   sph::SphConfig cfg;
   cfg.kernel = sph::KernelType::M4;
   cfg.gamma = 5.0 / 3.0;
@@ -158,6 +158,7 @@ std::unique_ptr<sph::SphSimulation> dusty_wave() {
   ds.drag = sph::DragLaw::ConstantK;
   ds.k_drag = {100.0 / 3};
   ds.eps = {0.5 / 3};
+  ds.variable = variable;
   sph::DustyWave wave;
   wave.n = 64;
   return std::make_unique<sph::SphSimulation>(sph::dustywave(wave, cfg, ds).make_system(), units::UnitSystem{});
@@ -179,16 +180,19 @@ TEST(DeviceTraffic, SphStepsWithRebuildsCopyAndAllocateNothing) {
 }
 
 TEST(DeviceTraffic, SphStepsWithoutRebuildsReadNothingBack) {
-  auto sim = dusty_wave();
-  double t = 0;
-  take_steps(*sim, 5, t);
-  const int builds0 = sim->system().neighbours().builds();
-  TrafficCounter counter;
-  take_steps(*sim, 40, t);
-  ASSERT_EQ(sim->system().neighbours().builds(), builds0) << "this case must run without neighbour rebuilds";
-  EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
-  EXPECT_EQ(counter.scalar_reads(), 0) << counter.report();
-  EXPECT_EQ(counter.allocations(), 0) << counter.report();
+  for (const auto variable : {sph::DustVariable::Epsilon, sph::DustVariable::SqrtRhoEps}) {
+    SCOPED_TRACE(variable == sph::DustVariable::Epsilon ? "eps" : "S with the mass projection");
+    auto sim = dusty_wave(variable);
+    double t = 0;
+    take_steps(*sim, 5, t);
+    const int builds0 = sim->system().neighbours().builds();
+    TrafficCounter counter;
+    take_steps(*sim, 40, t);
+    ASSERT_EQ(sim->system().neighbours().builds(), builds0) << "this case must run without neighbour rebuilds";
+    EXPECT_EQ(counter.deep_copies(), 0) << counter.report();
+    EXPECT_EQ(counter.scalar_reads(), 0) << counter.report();
+    EXPECT_EQ(counter.allocations(), 0) << counter.report();
+  }
 }
 
 // Two-fluid dust (LAB15): the 3D dustybox, dust sliding through the gas (rebuilds), the drag in every step.

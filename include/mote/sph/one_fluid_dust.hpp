@@ -108,7 +108,7 @@ class OneFluidDust : public SphModule {
   Real floored_mass() const { return floored_mass_; }
   /// Total dust mass the S-variable update created and the projection removed
   /// since the start (0 for the eps variable or without project_mass).
-  Real projected_mass() const { return projected_mass_; }
+  Real projected_mass() const;
 
   /// Dust-mass accounting carried by checkpoints: the floored and projected
   /// totals and the projection's per-species reference (empty before the first step).
@@ -116,7 +116,7 @@ class OneFluidDust : public SphModule {
     Real floored = 0.0, projected = 0.0;
     std::vector<Real> reference;
   };
-  MassAccounts mass_accounts() const { return {floored_mass_, projected_mass_, mass_ref_}; }
+  MassAccounts mass_accounts() const;
   void restore_mass_accounts(const MassAccounts& a);
   /// Particles with eps T_s > Courant time in the last time-step evaluation.
   int tva_violations() const { return tva_violations_; }
@@ -144,9 +144,13 @@ class OneFluidDust : public SphModule {
   /// Packed per-particle data gathered by the dusty force loops.
   Kokkos::View<Real**, Kokkos::LayoutRight, MemSpace> pack;
 
-  /// sum_a m_a eps_aj for each species j (host). Public only because nvcc's
-  /// extended lambdas may not live in private member functions.
-  std::vector<Real> species_mass(const Particles& p) const;
+  /// sum_a m_a eps_aj for each species j into mass_now_ (device). Public only because nvcc's
+  /// extended lambdas may not live in private member functions, as project_mass.
+  void species_mass(const Particles& p) const;
+  /// The first step's species masses become the projection's reference (device to device).
+  void set_mass_reference();
+  /// Rescales q_j to the reference mass of species j and adds the removed mass to the running total.
+  void project_mass(const Particles& p);
 
  private:
   DustSettings s_;
@@ -154,8 +158,12 @@ class OneFluidDust : public SphModule {
   bool projecting() const;
 
   Real floored_mass_ = 0.0;
-  Real projected_mass_ = 0.0;
-  std::vector<Real> mass_ref_;  ///< per-species dust mass kept by the projection
+  // The S variable's projection, on the device (set up once, no copy inside a step):
+  RealView2 mass_partial_;  ///< per block of particles and species
+  RealView1 mass_now_;      ///< sum_a m_a eps_aj of the current state
+  RealView1 mass_ref_;      ///< per-species dust mass kept by the projection
+  RealView1 projected_;     ///< (1): mass the projection removed since the start
+  bool reference_set_ = false;
   int tva_violations_ = 0;
   bool warned_ = false;
 };
