@@ -15,6 +15,24 @@ namespace mote::sph {
 
 namespace {
 
+/// One-fluid dust: the initial fractions leave a gas fraction 1 - sum_j eps_j above kMinGasFraction
+/// (one value is each species'), or the pressure and the stopping times, which divide by it (PL15
+/// eq. 9, 26), are lost to round-off: ten species of 0.1 sum to 1 - 1.1e-16.
+constexpr double kMinGasFraction = 1e-9;
+
+void check_total_fraction(const core::Deck& d, core::DeckCheck& check) {
+  const auto& eps = d.real_array("dust.eps");
+  if (d.string("dust.method") == "two-fluid" || d.string("dust.sizes_from") != "list" || eps.empty()) return;
+  const long long n = d.integer("dust.species");
+  if (eps.size() != 1 && static_cast<long long>(eps.size()) != n) return;  // reported by the list's check
+  double total = 0.0;
+  for (long long j = 0; j < n; ++j) total += eps[eps.size() == 1 ? 0 : static_cast<std::size_t>(j)];
+  if (!(1.0 - total > kMinGasFraction))
+    check.fail("dust.eps", logging::cat("sums to ", logging::format("%.17g", total), " over the ", n, " species (",
+                                        check.quote("dust.species"), "); one-fluid dust needs a gas fraction 1 - ",
+                                        "sum eps_j above ", kMinGasFraction));
+}
+
 /// Per-species lists hold one value (all species) or dust.species values, as
 /// DustSettings::validate() requires; checked here against the deck, with file and line.
 void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
@@ -38,6 +56,7 @@ void check_species_lists(const core::Deck& d, core::DeckCheck& check) {
   check_list("dust.eps", lists && !d.real_array("dust.eps").empty());
   if (!lists && !(d.real("dust.s_max") > d.real("dust.s_min")))
     check.fail("dust.s_max", "must exceed " + check.quote("dust.s_min"));
+  check_total_fraction(d, check);
 }
 
 /// PdV work from div v_g with drag heating needs an energy equation.
@@ -127,7 +146,9 @@ void DustSettings::declare(core::DeckSchema& s) {
   s.real_array("dust.eps")
       .default_value(std::vector<double>{0.01})
       .min(0.0)
-      .doc("Initial dust fractions eps_j (sizes_from = list; one value: each species).");
+      .doc(
+          "Initial dust fractions eps_j (sizes_from = list; one value: each species); one-fluid: 1 - sum_j eps_j "
+          "> 1e-9.");
   s.real("dust.s_min").default_value(5.99e-6).greater_than(0.0).unit("code length").doc("Power law: lower cell edge.");
   s.real("dust.s_max").default_value(0.167).greater_than(0.0).unit("code length").doc("Power law: upper cell edge.");
   s.real("dust.p").default_value(3.5).doc("Power law: index p of d eps = eps0 s^(3-p) ds (HPL18 eq. 63).");

@@ -201,6 +201,19 @@ TEST(SphDustLaws, DeckTable) {
         << e.what();
   }
   EXPECT_ANY_THROW(mote::core::Deck::parse("[dust]\npdv = \"total\"\n", "t.toml", schema));
+  // One-fluid fractions leave gas (1 - sum eps_j > 1e-9): ten of 0.1 (1 - 1.1e-16) and [0.5, 0.6] are refused,
+  // [0.5, 0.3, 0.19] accepted; two-fluid's eps are not fractions of one fluid.
+  for (const char* eps : {"species = 10\neps = [0.1]\n", "species = 2\neps = [0.5, 0.6]\n"}) {
+    try {
+      mote::core::Deck::parse(std::string("[dust]\n") + eps, "t.toml", schema);
+      ADD_FAILURE() << eps << " accepted";
+    } catch (const mote::core::DeckError& e) {
+      EXPECT_NE(std::string(e.what()).find("key 'dust.eps': sums to "), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(mote::core::Deck::parse("[dust]\nspecies = 3\neps = [0.5, 0.3, 0.19]\n", "t.toml", schema));
+  EXPECT_NO_THROW(
+      mote::core::Deck::parse("[dust]\nmethod = \"two-fluid\"\nspecies = 2\neps = [0.6]\n", "t.toml", schema));
 }
 
 }  // namespace
