@@ -397,6 +397,10 @@ void OneFluidDust::save_state(const SphSystem&, io::H5File& f) const {
   const io::Block block = io::Block::whole({n, ns});
   f.write("/state/dust_var", block, host_rows(var).data());
   f.write("/state/dust_dvar", block, host_rows(dvar).data());
+  // For a snapshot right after a restart (gas and dust velocities, HPL18 eq. 24-25); the next step
+  // recomputes them.
+  f.write("/state/dust_ts", block, host_rows(ts).data());
+  f.write("/state/dust_gforce", io::Block::whole({n, gforce.extent(1)}), host_rows(gforce).data());
   f.write_attribute("/state/dust_var", "stored", dust_storage(s_));
   f.write_attribute("/state/dust_var", "floored_mass", floored_mass_);
   const MassAccounts accounts = mass_accounts();
@@ -415,14 +419,20 @@ void OneFluidDust::load_state(SphSystem&, const io::H5File& f) {
   if (stored != dust_storage(s_))
     throw std::runtime_error("checkpoint dust variable is " + stored + ", the deck evolves " + dust_storage(s_) +
                              " (dust.variable): restart with the deck that wrote it");
-  std::vector<double> buf(n * ns);
-  const std::pair<const char*, RealView2> fields[] = {{"/state/dust_var", var}, {"/state/dust_dvar", dvar}};
-  for (const auto& [name, view] : fields) {
-    f.read(name, io::Block::whole({n, ns}), buf.data());
+  const auto read_rows = [&](const char* name, const RealView2& view) {
+    const hsize_t cols = view.extent(1);
+    std::vector<double> buf(n * cols);
+    f.read(name, io::Block::whole({n, cols}), buf.data());
     auto h = Kokkos::create_mirror_view(view);
     for (hsize_t i = 0; i < n; ++i)
-      for (hsize_t j = 0; j < ns; ++j) h(i, j) = buf[i * ns + j];
+      for (hsize_t j = 0; j < cols; ++j) h(i, j) = buf[i * cols + j];
     Kokkos::deep_copy(view, h);
+  };
+  read_rows("/state/dust_var", var);
+  read_rows("/state/dust_dvar", dvar);
+  if (f.exists("/state/dust_ts")) {  // checkpoints before these were stored: the set-up's, until the next step
+    read_rows("/state/dust_ts", ts);
+    read_rows("/state/dust_gforce", gforce);
   }
   MassAccounts acc;
   if (f.has_attribute("/state/dust_var", "floored_mass")) {

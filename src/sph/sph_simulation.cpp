@@ -178,6 +178,10 @@ void SphSimulation::save_state(io::H5File& f) const {
   f.write("/state/divv", scalar, to_host(p.divv).data());
   f.write("/state/divv_old", scalar, to_host(system_->divv_old()).data());
   f.write("/state/alpha", scalar, to_host(p.alpha).data());
+  // Not needed to continue (the next step recomputes them), but a snapshot written right after a
+  // restart (one a failed write left out) shows them.
+  f.write("/state/rho", scalar, to_host(p.rho).data());
+  f.write("/state/P", scalar, to_host(p.P).data());
   f.write("/state/type", scalar, ints_to_host(p.type).data());
   f.write("/state/id", scalar, ints_to_host(p.id).data());
   for (const auto& m : system_->modules()) m->save_state(*system_, f);
@@ -216,6 +220,10 @@ void SphSimulation::load_state(const io::H5File& f) {
   read1("/state/divv", p.divv);
   read1("/state/divv_old", system_->divv_old());
   read1("/state/alpha", p.alpha);
+  if (f.exists("/state/rho")) {  // checkpoints before these were stored: the set-up's, until the next step
+    read1("/state/rho", p.rho);
+    read1("/state/P", p.P);
+  }
   for (const auto& m : system_->modules()) m->load_state(*system_, f);
   std::vector<std::int32_t> ibuf(n);
   const std::pair<const char*, IntView1> int_fields[] = {{"/state/type", p.type}, {"/state/id", p.id}};
