@@ -43,23 +43,27 @@ std::vector<double> host(const RealView2& v) {
 // 20 steps in one go and 10 + 10 through a checkpoint: identical bits, for both
 // dust variables (the S variable's projection reference and the mass totals
 // travel with the checkpoint).
-void expect_bit_identical_restart(DustVariable var, const std::string& path) {
+/// A new simulation of `var` continued from `sim`'s checkpoint, written to `path`.
+std::unique_ptr<SphSimulation> restarted_from(const SphSimulation& sim, DustVariable var, const std::string& path) {
   const auto comm = core::Comm::world();
+  {
+    io::H5File f(path, io::H5File::Mode::Create, comm);
+    f.create_group("/state");
+    sim.save_state(f);
+  }
+  auto resumed = make_simulation(var);
+  io::H5File f(path, io::H5File::Mode::Read, comm);
+  resumed->load_state(f);
+  return resumed;
+}
+
+void expect_bit_identical_restart(DustVariable var, const std::string& path) {
   auto full = make_simulation(var);
   advance(*full, 20);
 
   auto first = make_simulation(var);
   advance(*first, 10);
-  {
-    io::H5File f(path, io::H5File::Mode::Create, comm);
-    f.create_group("/state");
-    first->save_state(f);
-  }
-  auto resumed = make_simulation(var);
-  {
-    io::H5File f(path, io::H5File::Mode::Read, comm);
-    resumed->load_state(f);
-  }
+  auto resumed = restarted_from(*first, var, path);
   advance(*resumed, 10);
 
   EXPECT_EQ(resumed->system().time(), full->system().time());
@@ -139,20 +143,10 @@ TEST(SphDustCheckpoint, SnapshotRightAfterARestartIsTheRunsOwn) {
   const auto dir = std::filesystem::temp_directory_path() / "mote_sph_dust_checkpoint";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "checkpoint_snapshot.h5").string();
-  const auto comm = core::Comm::world();
   for (const auto var : {DustVariable::Epsilon, DustVariable::SqrtRhoEps}) {
     auto first = make_simulation(var);
     advance(*first, 10);
-    {
-      io::H5File f(path, io::H5File::Mode::Create, comm);
-      f.create_group("/state");
-      first->save_state(f);
-    }
-    auto resumed = make_simulation(var);
-    {
-      io::H5File f(path, io::H5File::Mode::Read, comm);
-      resumed->load_state(f);
-    }
+    const auto resumed = restarted_from(*first, var, path);
     const auto a = first->system().snapshot(), b = resumed->system().snapshot();
     EXPECT_EQ(flat(a.rho), flat(b.rho));
     EXPECT_EQ(flat(a.P), flat(b.P));
