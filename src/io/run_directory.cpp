@@ -57,12 +57,17 @@ int create_exclusive(const std::string& path) {
   return fd;
 }
 
-/// Replaces the content of the open lock file `fd` with this process's host, pid and start time.
-void write_owner(int fd, const std::string& path) {
+/// `fd`, the lock file `path` that this process holds, with this process's host, pid and start time
+/// written into it; if they cannot be written, the file is removed and closed before the error.
+int owned(int fd, const std::string& path) {
   const std::string text =
       "host " + host_name() + "\npid " + std::to_string(::getpid()) + "\nstarted " + now_utc() + "\n";
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size()))
-    throw core::IOError("cannot write lock file '" + path + "': " + std::strerror(errno));
+  if (::ftruncate(fd, 0) == 0 && ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size()))
+    return fd;
+  const int saved = errno;
+  ::unlink(path.c_str());
+  ::close(fd);
+  throw core::IOError("cannot write lock file '" + path + "': " + std::strerror(saved));
 }
 
 LockOwner parse_owner(std::istream& in) {
@@ -119,8 +124,8 @@ Flock try_flock(int fd, const std::string& path) {
 
 /// Whether the open file `fd` is still the file named `path` (not removed or replaced meanwhile).
 bool still_named(int fd, const std::string& path) {
-  struct stat open_file {
-  }, named{};
+  struct stat open_file = {};
+  struct stat named = {};
   return ::fstat(fd, &open_file) == 0 && ::stat(path.c_str(), &named) == 0 && open_file.st_dev == named.st_dev &&
          open_file.st_ino == named.st_ino;
 }
@@ -141,8 +146,7 @@ int lock_by_existence(const std::string& dir, const std::string& lock) {
     fd = create_exclusive(lock);
     if (fd < 0) throw in_use(dir, lock);
   }
-  write_owner(fd, lock);
-  return fd;
+  return owned(fd, lock);
 }
 
 /// Locks `dir` through its lock file `lock` and returns the open descriptor that holds it: an
@@ -166,10 +170,7 @@ int acquire_lock(const std::string& dir, const std::string& lock) {
       ::close(fd);
       throw;
     }
-    if (state == Flock::kUnsupported && created) {
-      write_owner(fd, lock);
-      return fd;
-    }
+    if (state == Flock::kUnsupported && created) return owned(fd, lock);
     if (state != Flock::kHeld) {
       ::close(fd);
       if (state == Flock::kBusy) throw in_use(dir, lock);
@@ -182,8 +183,7 @@ int acquire_lock(const std::string& dir, const std::string& lock) {
     if (const LockOwner previous = read_owner(fd); !created && previous.pid > 0)
       logging::warn("taking over the lock file '", lock, "' of ", describe(previous),
                     ": that run has ended without removing it");
-    write_owner(fd, lock);
-    return fd;
+    return owned(fd, lock);
   }
   throw core::IOError("cannot lock '" + lock + "': its file was removed and made anew 16 times while taking it");
 }
