@@ -52,7 +52,7 @@ CROSS_KEY_CASES = [
       "disc_pulse.toml:17: key 'grid.R_out': must exceed grid.R_in = 60.0 (command line 'grid.R_in=60')",
       "command line 'grid.theta_max=-0.6': key 'grid.theta_max': must exceed grid.theta_min = -0.523598775598",
       "command line 'dust.sizes=[1.0, 2.0]': key 'dust.sizes': disc_pulse evolves one dust species"]),
-    ("sph_dustywave", ["dust.species=3", "dust.K=[1.0, 2.0]", "sph.eos=isothermal"],
+    ("sph_dustywave", ["dust.species=3", "dust.K=[1.0, 2.0]", "dust.eps=[0.1]", "sph.eos=isothermal"],
      ["(3 errors)", "key 'dust.K': needs 1 or 3 entries (dust.species = 3 (command line 'dust.species=3')), got 2",
       "key 'dust.pdv': \"gas\" needs sph.eos = \"isothermal\" (command line 'sph.eos=isothermal') to be",
       "command line 'sph.eos=isothermal': key 'sph.eos': sph_dustywave needs \"adiabatic\""]),
