@@ -5,7 +5,8 @@
 // same bit for bit, and the density of the reordered set equals the density
 // before the reordering to round-off, particle by particle (matched by id).
 // A run that reorders on its rebuilds restarts from its checkpoint bit for
-// bit (the storage order travels with the checkpoint).
+// bit (the storage order travels with the checkpoint). Both hold for the
+// one-fluid dust and for two-fluid dust particles (LAB15) with their drag state.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,10 +19,12 @@
 #include <string>
 #include <vector>
 
+#include "mote/setups/dustybox.hpp"
 #include "mote/setups/lattice.hpp"
 #include "mote/sph/density.hpp"
 #include "mote/sph/one_fluid_dust.hpp"
 #include "mote/sph/sph_simulation.hpp"
+#include "mote/sph/two_fluid_dust.hpp"
 
 using namespace mote;
 using namespace mote::sph;
@@ -74,43 +77,44 @@ std::unique_ptr<SphSystem> make_shuffled_dusty_box() {
   return sys;
 }
 
-/// Every per-particle field, as raw bytes in id order.
+/// Every per-particle field of the engine and of its dust module (one-fluid
+/// or two-fluid), as raw bytes in id order.
 std::map<std::string, std::vector<unsigned char>> state_by_id(const SphSystem& sys) {
   const Particles& p = sys.particles();
-  const OneFluidDust& d = *sys.module<OneFluidDust>();
   const IdOrder by_id(p.id);
   std::map<std::string, std::vector<unsigned char>> out;
   auto put = [&out](const std::string& name, const auto& host) {
     const auto* bytes = reinterpret_cast<const unsigned char*>(host.data());
     out[name].assign(bytes, bytes + host.span() * sizeof(*host.data()));
   };
-  const std::map<std::string, RealView2> fields2 = {{"x", p.x},
-                                                    {"v", p.v},
-                                                    {"a", p.a},
-                                                    {"vpred", p.vpred},
-                                                    {"dust_var", d.var},
-                                                    {"dust_var_pred", d.var_pred},
-                                                    {"dust_dvar", d.dvar},
-                                                    {"dust_ts", d.ts},
-                                                    {"dust_coef", d.coef},
-                                                    {"dust_gforce", d.gforce}};
-  const std::map<std::string, RealView1> fields1 = {{"m", p.m},
-                                                    {"h", p.h},
-                                                    {"rho", p.rho},
-                                                    {"omega", p.omega},
-                                                    {"u", p.u},
-                                                    {"upred", p.upred},
-                                                    {"dudt", p.dudt},
-                                                    {"P", p.P},
-                                                    {"cs", p.cs},
-                                                    {"alpha", p.alpha},
-                                                    {"divv", p.divv},
-                                                    {"vsig", p.vsig},
-                                                    {"divv_old", sys.divv_old()},
-                                                    {"dust_eps", d.eps_tot},
-                                                    {"dust_ts_eps", d.eps_ts},
-                                                    {"dust_dtot", d.d_tot},
-                                                    {"dust_u", d.uloc}};
+  std::map<std::string, RealView2> fields2 = {{"x", p.x}, {"v", p.v}, {"a", p.a}, {"vpred", p.vpred}};
+  std::map<std::string, RealView1> fields1 = {{"m", p.m},
+                                              {"h", p.h},
+                                              {"rho", p.rho},
+                                              {"omega", p.omega},
+                                              {"u", p.u},
+                                              {"upred", p.upred},
+                                              {"dudt", p.dudt},
+                                              {"P", p.P},
+                                              {"cs", p.cs},
+                                              {"alpha", p.alpha},
+                                              {"divv", p.divv},
+                                              {"vsig", p.vsig},
+                                              {"divv_old", sys.divv_old()}};
+  if (const OneFluidDust* d = sys.module<OneFluidDust>()) {
+    fields2.insert({{"dust_var", d->var},
+                    {"dust_var_pred", d->var_pred},
+                    {"dust_dvar", d->dvar},
+                    {"dust_ts", d->ts},
+                    {"dust_coef", d->coef},
+                    {"dust_gforce", d->gforce}});
+    fields1.insert(
+        {{"dust_eps", d->eps_tot}, {"dust_ts_eps", d->eps_ts}, {"dust_dtot", d->d_tot}, {"dust_u", d->uloc}});
+  }
+  if (const TwoFluidDust* d = sys.module<TwoFluidDust>()) {
+    fields2.insert({{"two_fluid_v_start", d->v_start}, {"two_fluid_dv", d->dv}, {"two_fluid_tinv", d->tinv}});
+    fields1.insert({{"two_fluid_du", d->du}});
+  }
   for (const auto& [name, v] : fields2) put(name, by_id(v));
   for (const auto& [name, v] : fields1) put(name, by_id(v));
   put("type", by_id(p.type));
@@ -167,10 +171,51 @@ std::vector<HostView<Real*>> density_by_id(SphSystem& sys, const NeighbourList& 
   return out;
 }
 
-}  // namespace
+/// The dustybox of LAB15 sec. 3 in 2D with two two-fluid dust species
+/// (constant K), adiabatic gas, every particle given a random transonic
+/// velocity and the storage shuffled, so that rebuilds reorder gas and dust
+/// particles alike.
+std::unique_ptr<SphSystem> make_shuffled_two_fluid_box() {
+  DustyBox box;
+  box.dim = 2;
+  box.n = 16;
+  box.lo = 0.0;
+  box.hi = 1.0;
+  box.eps = 0.3;
+  SphConfig cfg;
+  cfg.dim = 2;
+  cfg.kernel = KernelType::M4;
+  cfg.eos = EosType::Adiabatic;
+  DustSettings ds;
+  ds.method = DustMethod::TwoFluid;
+  ds.nspecies = 2;
+  ds.drag = DragLaw::ConstantK;
+  ds.k_drag = {5.0, 20.0};
+  auto sys = make_dustybox(box, cfg, ds);
+  const Particles& p = sys->particles();
+  auto v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.v);
+  std::mt19937 rng(11);
+  std::normal_distribution<Real> g(0.0, 0.5);
+  for (int i = 0; i < p.n; ++i)
+    for (int d = 0; d < 2; ++d) v(i, d) += g(rng);
+  Kokkos::deep_copy(p.v, v);
+  View<int*> order("shuffle", p.n);
+  auto h = Kokkos::create_mirror_view(order);
+  std::iota(h.data(), h.data() + p.n, 0);
+  std::shuffle(h.data(), h.data() + p.n, rng);
+  Kokkos::deep_copy(order, h);
+  sys->reorder_particles(order);
+  sys->initialise();
+  return sys;
+}
 
-TEST(SphReorder, RebuildSortsByCellAndKeepsEveryParticleState) {
-  auto sys = make_shuffled_dusty_box();
+using SystemFactory = std::unique_ptr<SphSystem> (*)();
+
+/// After three steps and a reversal of the storage, a rebuild sorts the
+/// particles by cell, keeps every field of every particle bit for bit, and the
+/// density of the new order equals the old order's to round-off.
+void expect_rebuild_sorts_and_keeps_state(SystemFactory make) {
+  auto sys = make();
   for (int k = 0; k < 3; ++k) sys->step();  // every field holds step data
   reverse_storage(*sys);
   const Particles& p = sys->particles();
@@ -197,28 +242,30 @@ TEST(SphReorder, RebuildSortsByCellAndKeepsEveryParticleState) {
   }
 }
 
-TEST(SphReorder, RestartOfAReorderingRunIsBitIdentical) {
-  const auto dir = std::filesystem::temp_directory_path() / "mote_sph_reorder";
+/// 20 steps in one go and 10 + 10 through a checkpoint, with rebuilds (and so
+/// reorderings) after the restart: the same storage order and the same bits.
+void expect_restart_bit_identical(SystemFactory make, const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / name;
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "checkpoint.h5").string();
   const auto comm = core::Comm::world();
   auto run = [](SphSimulation& sim, int steps) {
     for (int k = 0; k < steps; ++k) sim.advance(0.0, sim.max_dt());
   };
-  SphSimulation full(make_shuffled_dusty_box(), units::UnitSystem{});
+  SphSimulation full(make(), units::UnitSystem{});
   run(full, 10);
   const int builds_at_checkpoint = full.system().neighbours().builds();
   run(full, 10);
   EXPECT_GE(full.system().neighbours().builds() - builds_at_checkpoint, 2);  // reorders after the restart
 
-  SphSimulation first(make_shuffled_dusty_box(), units::UnitSystem{});
+  SphSimulation first(make(), units::UnitSystem{});
   run(first, 10);
   {
     io::H5File f(path, io::H5File::Mode::Create, comm);
     f.create_group("/state");
     first.save_state(f);
   }
-  SphSimulation resumed(make_shuffled_dusty_box(), units::UnitSystem{});
+  SphSimulation resumed(make(), units::UnitSystem{});
   {
     io::H5File f(path, io::H5File::Mode::Read, comm);
     resumed.load_state(f);
@@ -227,4 +274,24 @@ TEST(SphReorder, RestartOfAReorderingRunIsBitIdentical) {
   EXPECT_EQ(resumed.system().time(), full.system().time());
   EXPECT_EQ(host_ids(resumed.system().particles()), host_ids(full.system().particles()));  // same storage order
   EXPECT_TRUE(state_by_id(resumed.system()) == state_by_id(full.system()));
+  if (const TwoFluidDust* d = full.system().module<TwoFluidDust>())
+    EXPECT_EQ(resumed.system().module<TwoFluidDust>()->drag_heating(), d->drag_heating());
+}
+
+}  // namespace
+
+TEST(SphReorder, RebuildSortsByCellAndKeepsEveryParticleState) {
+  expect_rebuild_sorts_and_keeps_state(make_shuffled_dusty_box);
+}
+
+TEST(SphReorder, RebuildKeepsEveryTwoFluidParticleState) {
+  expect_rebuild_sorts_and_keeps_state(make_shuffled_two_fluid_box);
+}
+
+TEST(SphReorder, RestartOfAReorderingRunIsBitIdentical) {
+  expect_restart_bit_identical(make_shuffled_dusty_box, "mote_sph_reorder");
+}
+
+TEST(SphReorder, RestartOfAReorderingTwoFluidRunIsBitIdentical) {
+  expect_restart_bit_identical(make_shuffled_two_fluid_box, "mote_sph_reorder_two_fluid");
 }
