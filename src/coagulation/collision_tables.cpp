@@ -150,8 +150,9 @@ CollisionTables build_collision_tables(const MassGrid& grid, Real chi_im, Real e
         split(rem, rem_corr, mc, me, scheme, p, i, m_rem, net_rem, near_l, near_u, l, self_rem);
       }
       const double m_frag = m_rem > 0 ? (1.0 + chi_im) * m_small : m_tot;  // m_tot - m_rem without cancellation
+      const double m_largest = largest_fragment_mass(mc[i], mc[j], chi_im);
       const int l =
-          std::min(n - 1, static_cast<int>(std::upper_bound(me.begin() + 1, me.end(), m_frag) - (me.begin() + 1)));
+          std::min(n - 1, static_cast<int>(std::upper_bound(me.begin() + 1, me.end(), m_largest) - (me.begin() + 1)));
       frag.push_back({l, p, m_frag});
       self(p) = (self_coag ? 1 : 0) | (self_rem ? 2 : 0);
     }

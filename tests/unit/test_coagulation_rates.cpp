@@ -2,6 +2,7 @@
 // pair, single-pair rates against hand calculations, collision tables.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -126,6 +127,39 @@ TEST(CoagulationRates, TablesDeliverTheCollidingMass) {
       }
       EXPECT_NEAR(sum, 1.0, 1e-14);
     }
+  }
+}
+
+// RBO24 sec. 5: a fragmenting pair's fragments are spread up to the bin of
+// its largest fragment, min(chi_im m_im, m_tar) (the first bin where that is
+// below the grid); so no fragment lands in a bin
+// whose lower edge is above the target's mass (two equal grains give
+// fragments no heavier than either). Placing them by the total fragment mass
+// m_i + m_j - m_rem instead put 14 % of an equal pair's fragments above its
+// bin at 7 bins per decade.
+TEST(CoagulationRates, FragmentsAreSpreadUpToTheLargestFragment) {
+  const auto grid = coag::MassGrid::from_masses(1.0, 1e6, 43);
+  const int n = grid.size();
+  for (double chi : {0.5, 1.0, 3.0}) {
+    const auto t = coag::build_collision_tables(grid, chi, 11.0 / 6.0);
+    auto pi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.pair_i);
+    auto pj = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.pair_j);
+    auto ptr = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.fragment.ptr);
+    auto pair = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.fragment.pair);
+    auto share = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t.fragment_share);
+    std::vector<int> entries(t.pairs, 0);
+    for (int l = 0; l < n; ++l)
+      for (int e = ptr(l); e < ptr(l + 1); ++e) {
+        const int p = pair(e);
+        ++entries[p];
+        const double m_tar = grid.mass(pi(p)), m_im = grid.mass(pj(p));
+        const double largest = std::min(chi * m_im, m_tar);
+        if (l > 0) EXPECT_LE(grid.edge(l), largest) << "pair " << pi(p) << ", " << pj(p) << " chi " << chi;
+        if (l + 1 < n) EXPECT_GT(grid.edge(l + 1), largest) << "pair " << pi(p) << ", " << pj(p) << " chi " << chi;
+        for (int k = 0; k < n; ++k)
+          if (grid.edge(k) > m_tar) EXPECT_EQ(share(l, k), 0.0) << "bin " << k << " above the target " << pi(p);
+      }
+    for (int p = 0; p < t.pairs; ++p) EXPECT_EQ(entries[p], 1) << "pair " << p;
   }
 }
 

@@ -9,8 +9,9 @@
 //    that also conserves the second moment;
 //  * remnants m_rem (eq. 68) are split the same way (eq. 64); remnants below
 //    the first centre go to the first bin;
-//  * fragments m_frag = m_i + m_j - m_rem are collected per "fragment bin" l
-//    (the smallest l with m^e_{l+1} > m_frag) and each bin's total is then
+//  * fragments m_frag = m_i + m_j - m_rem are collected per "fragment bin" l,
+//    the bin of the largest fragment min(chi_im m_im, m_tar) (RBO24 sec. 5:
+//    the smallest l with m^e_{l+1} above it), and each bin's total is then
 //    spread over bins k <= l with the power-law fractions N_k(m^e_{l+1})
 //    (eq. 66-67) -- the two-stage redistribution of Rafikov et al. (2020),
 //    O(N^2) instead of O(N^3).

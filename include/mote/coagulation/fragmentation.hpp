@@ -2,7 +2,9 @@
 //  * fragmentation probability for a Maxwellian distribution of relative
 //    speeds around dv (RBO24 eq. 62; Stammler & Birnstiel 2022),
 //  * remnant and fragment masses with the impactor-excavation factor chi_im
-//    (RBO24 eq. 68),
+//    (RBO24 eq. 68), and the largest fragment min(chi_im m_im, m_tar) that
+//    bounds the fragments' distribution (RBO24 sec. 5, as cuDisc's
+//    SimpleErosion::mass_scale),
 //  * the cumulative mass fraction of a power-law fragment distribution
 //    n(m) ~ m^-eta (RBO24 eq. 66-67; Rafikov et al. 2020).
 #pragma once
@@ -24,6 +26,15 @@ KOKKOS_INLINE_FUNCTION Real remnant_mass(Real m_a, Real m_b, Real chi_im) {
   const Real m_tar = math::max(m_a, m_b), m_im = math::min(m_a, m_b);
   const Real removed = chi_im * m_im;
   return removed < m_tar ? m_tar - removed : 0.0;
+}
+
+/// Largest fragment of a fragmenting collision: the mass the impactor
+/// excavates, min(chi_im m_im, m_tar) (RBO24 sec. 5, below eq. 67). The
+/// fragments (m_a + m_b - m_rem in all) are distributed up to this mass, so
+/// none is heavier than the target.
+KOKKOS_INLINE_FUNCTION Real largest_fragment_mass(Real m_a, Real m_b, Real chi_im) {
+  const Real m_tar = math::max(m_a, m_b), m_im = math::min(m_a, m_b);
+  return math::min(chi_im * m_im, m_tar);
 }
 
 /// Mass fraction of a fragment distribution n(m) ~ m^-eta below mass m, for
