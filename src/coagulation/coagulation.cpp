@@ -191,7 +191,7 @@ CallStatistics Coagulation::integrate_with(const RealView2& density, Real dt, co
             Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int k) { density(c, k) = y(k); });
           }
           Kokkos::single(Kokkos::PerTeam(team), [&]() {
-            if (total > 0) next(c) = r.h_next;
+            next(c) = total > 0 ? r.h_next : 0.0;  // an empty cell proposes nothing
             steps(c) = r.accepted;
             rejected(c) = r.rejected;
             failed(c) = r.ok ? 0 : 1;

@@ -124,3 +124,35 @@ TEST(CoagulationAnalytic, AbsoluteToleranceScalesWithTheCellsDustDensity) {
   EXPECT_EQ(substeps[0], substeps[1]);
   for (int k = 0; k < grid.size(); ++k) EXPECT_EQ(result[0][k], result[1][k]) << "species " << k;
 }
+
+// A cell whose dust is gone proposes no sub-step: the proposal it made while
+// it held dust would otherwise hold the driver's coagulation interval (the
+// smallest proposal over the cells) down for the rest of the run.
+TEST(CoagulationAnalytic, EmptiedCellsProposeNoSubstep) {
+  coag::CoagulationSettings s;
+  s.kernel = "constant";
+  const auto grid = coag::MassGrid::from_masses(1e-3, 1e3, 43);
+  const auto kern = coag::make_kernel(s, grid);
+  coag::Coagulation solver(grid, s, 2);
+  mote::RealView2 rho("rho", 2, grid.size());
+  auto h = Kokkos::create_mirror_view(rho);
+  const double sparse = std::ldexp(1.0, -20);  // the constant kernel's time scale is 2^20 longer there
+  auto fill = [&](double dense_scale) {
+    for (int k = 0; k < grid.size(); ++k) {
+      const double m = coag::analytic::bin_mass("constant", grid.edge(k), grid.edge(k + 1), 0.0, 1, 1, 1);
+      h(0, k) = dense_scale * m;
+      h(1, k) = sparse * m;
+    }
+    Kokkos::deep_copy(rho, h);
+  };
+  fill(1.0);
+  const auto both = solver.integrate(rho, 0.1, kern);
+  fill(0.0);
+  const auto sparse_only = solver.integrate(rho, 0.1, kern);
+  auto next = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.next_substep());
+  std::printf("smallest proposal: %.3e with both cells, %.3e with the dense cell emptied\n", both.min_next_substep,
+              sparse_only.min_next_substep);
+  EXPECT_EQ(next(0), 0.0);
+  EXPECT_EQ(sparse_only.min_next_substep, next(1));
+  EXPECT_GT(sparse_only.min_next_substep, 1e3 * both.min_next_substep);
+}
