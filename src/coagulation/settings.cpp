@@ -89,7 +89,9 @@ void declare(core::DeckSchema& s) {
   s.real("coagulation.mu")
       .default_value(2.4)
       .greater_than(0.0)
-      .doc("Mean molecular weight of the gas (k_B T = mu m_H c_s^2, mean free path).");
+      .doc(
+          "Mean molecular weight of the gas (k_B T = mu m_H c_s^2, mean free path); on the disc grid gas.mu "
+          "applies and this key, if given, must equal it.");
   s.rule(check_size_range);
 }
 

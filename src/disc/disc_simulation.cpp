@@ -47,6 +47,22 @@ DiscSimulation::InitialDust DiscSimulation::well_mixed(std::vector<double> dust_
   };
 }
 
+namespace {
+
+/// On the disc the collisions' k_B T = mu m_H c_s^2 (RBO24 eq. 58) takes c_s
+/// from the gas, whose c_s^2 = k_B T / (mu m_H) uses gas.mu: a different
+/// coagulation.mu would give them another temperature (2.6 % apart with the
+/// two defaults, 2.34 and 2.4). The disc therefore uses gas.mu, and a
+/// coagulation.mu given in the deck must agree with it.
+void check_coagulation_mu(const core::Deck& d, core::DeckCheck& check) {
+  if (!d.has_table("coagulation") || d.where("coagulation.mu").find("(default)") != std::string::npos) return;
+  if (d.real("coagulation.mu") != d.real("gas.mu"))
+    check.fail("coagulation.mu", "must equal " + check.quote("gas.mu") +
+                                     ": the disc's coagulation takes the gas's mean molecular weight; set gas.mu");
+}
+
+}  // namespace
+
 void DiscSimulation::declare(core::DeckSchema& schema) {
   mesh::GridSpec::declare(schema);
   mesh::Boundaries::declare(schema);
@@ -56,6 +72,7 @@ void DiscSimulation::declare(core::DeckSchema& schema) {
   coagulation::declare(schema);
   radiation::declare(schema);
   TemperatureSettings::declare(schema);
+  schema.rule(check_coagulation_mu);
 }
 
 DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, const units::UnitSystem& units,
@@ -80,7 +97,9 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
   }
   if (deck.has_table("coagulation")) {
     // RBO24 sec. 6: coagulation on its own adaptive schedule, after the dust step.
-    coag_ = std::make_unique<DiscCoagulation>(*grid_, *dust_, coagulation::settings_from_deck(deck), units);
+    auto coag_settings = coagulation::settings_from_deck(deck);
+    coag_settings.mu = gas_->config().mu;  // the gas's c_s^2 = k_B T / (mu m_H) (check_coagulation_mu)
+    coag_ = std::make_unique<DiscCoagulation>(*grid_, *dust_, std::move(coag_settings), units);
     driver_->add({"coagulation", Schedule::adaptive(),
                   [this](double, double elapsed) { coag_->update(gas_->fields(), elapsed); },
                   [this] { return coag_->next_interval(); }});

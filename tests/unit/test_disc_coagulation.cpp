@@ -1,13 +1,15 @@
 // Coagulation as a disc sub-solver (RBO24 sec. 5-6; disc_coagulation.hpp):
 // mass conserved in every cell through a call, every cell identical to the
 // standalone solver fed with that cell's gas and dust state, species velocities
-// kept, the adaptive driver schedule, and deck errors.
+// kept, the adaptive driver schedule, the gas's mean molecular weight, and
+// deck errors.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -289,4 +291,30 @@ TEST(DiscCoagulation, DeckErrors) {
   coag::CoagulationSettings s;
   s.vertically_integrated = true;
   EXPECT_THROW(disc::DiscCoagulation(f.sim.grid(), f.sim.dust(), s, f.units), core::DeckError);
+}
+
+// On the disc the collisions' k_B T = mu m_H c_s^2 takes gas.mu, the mean
+// molecular weight of the gas's c_s^2 = k_B T / (mu m_H) (with the two keys'
+// defaults, 2.34 and 2.4, it took 2.4: T 2.6 % high); a coagulation.mu given
+// in the deck must equal gas.mu.
+TEST(DiscCoagulation, TakesTheGasMeanMolecularWeight) {
+  const auto units = units::unit_system_by_name("au_msun");
+  auto make = [&](const std::string& coagulation_table, const std::vector<std::string>& overrides) {
+    return std::make_unique<disc::DiscSimulation>(
+        core::Deck::parse(deck_text() + "[coagulation]\nkernel = \"physical\"\n" + coagulation_table, "mu", schema(),
+                          overrides),
+        core::Comm::world(), units,
+        disc::DiscSimulation::well_mixed(std::vector<double>(kSpecies, 0.01 / kSpecies), 1e-40));
+  };
+  ASSERT_NE(make("", {})->coagulation(), nullptr);
+  EXPECT_EQ(make("", {})->coagulation()->settings().mu, 2.34);
+  EXPECT_EQ(make("", {"gas.mu=2.4"})->coagulation()->settings().mu, 2.4);
+  EXPECT_EQ(make("mu = 2.4\n", {"gas.mu=2.4"})->coagulation()->settings().mu, 2.4);
+  try {
+    make("mu = 2.4\n", {});
+    ADD_FAILURE() << "coagulation.mu = 2.4 with gas.mu = 2.34 accepted";
+  } catch (const core::DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("coagulation.mu"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("gas.mu"), std::string::npos) << e.what();
+  }
 }

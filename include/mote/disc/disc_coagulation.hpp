@@ -51,6 +51,7 @@ class DiscCoagulation {
   void load_state(const io::H5File& file, const std::string& name = "/state/coagulation_next_substep");
 
   const coagulation::MassGrid& mass_grid() const { return mass_grid_; }
+  const coagulation::CoagulationSettings& settings() const { return settings_; }
   const coagulation::Coagulation& solver() const { return solver_; }
   /// Cell index of the coagulation solver for active cell (i, j): (i - i_begin) nt + (j - j_begin).
   int cell(int i, int j) const { return (i - grid_.i_begin()) * grid_.nt + (j - grid_.j_begin()); }

@@ -60,6 +60,8 @@ class DiscSimulation : public io::Simulation {
   const GasDisc& gas() const { return *gas_; }
   DustDynamics& dust() { return *dust_; }
   const DustDynamics& dust() const { return *dust_; }
+  /// The coagulation sub-solver, or nullptr without a [coagulation] table.
+  const DiscCoagulation* coagulation() const { return coag_.get(); }
   DiscDriver& driver() { return *driver_; }
   /// The temperature solver, or nullptr when the deck has no [radiation] table.
   const DiscTemperature* temperature() const { return temperature_.get(); }
