@@ -143,15 +143,25 @@ BENCHMARK(BM_CoagulationRates)
     ->Args({256, 100, 0, 0})
     ->Args({1, 200, 1, 0})
     ->Args({256, 100, 1, 0})
-    ->Unit(benchmark::kMicrosecond);
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 // Arguments: n (n x n cells), species, team size.
-BENCHMARK(BM_CoagulationStep)->Args({32, 100, 0})->Args({150, 100, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_CoagulationStep)
+    ->Args({32, 100, 0})
+    ->Args({150, 100, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
 #if defined(KOKKOS_ENABLE_CUDA)
 // The team size of a GPU's cell teams (issue 17): fixed sizes against Kokkos's choice.
-BENCHMARK(BM_CoagulationRates)->ArgsProduct({{4096}, {100}, {1}, {0, 32, 64, 128, 256}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CoagulationRates)
+    ->ArgsProduct({{4096}, {100}, {1}, {0, 32, 64, 128, 256}})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_CoagulationStep)
     ->ArgsProduct({{150}, {100}, {32, 64, 128, 256}})
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(1);
+    ->Iterations(1)
+    ->UseRealTime();
 #endif
-BENCHMARK(BM_CoagulationSteadyStateE3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_CoagulationSteadyStateE3)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();

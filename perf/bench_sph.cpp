@@ -235,10 +235,17 @@ BENCHMARK(BM_SphStep3DBox)
     ->Args({0, 46, 5})
     ->Args({0, 46, 20})
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(10);
-BENCHMARK(BM_SphStep2DColumn)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(200);
-BENCHMARK(BM_SphPhases3DBox)->Args({0, 46})->Args({1, 46})->Args({2, 46})->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_SphStepColumn3D)->Unit(benchmark::kMillisecond)->Iterations(49);
-BENCHMARK(BM_SphPhasesColumn3D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5);
+    ->Iterations(10)
+    ->UseRealTime();
+BENCHMARK(BM_SphStep2DColumn)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(200)->UseRealTime();
+BENCHMARK(BM_SphPhases3DBox)
+    ->Args({0, 46})
+    ->Args({1, 46})
+    ->Args({2, 46})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK(BM_SphStepColumn3D)->Unit(benchmark::kMillisecond)->Iterations(49)->UseRealTime();
+BENCHMARK(BM_SphPhasesColumn3D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 
 }  // namespace

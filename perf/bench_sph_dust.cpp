@@ -7,7 +7,7 @@
 // forms and both dust variables (args: N, disc 0 = direct second derivatives,
 // 1 = two first derivatives; pdv 0 = div v of PL15 eq. 13, 1 = div v_g,
 // dust.pdv = "gas"; var 0 = eps_j, 1 = S_j with its dust-mass projection).
-// Counters: particle-updates/s, seconds per step; compare the "time" column.
+// Counter: particle-updates/s; the seconds per step are the "time" column.
 //   bench_sph_dust --benchmark_out=sph_dust.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // Benchmarks of the two-fluid SPH dust (LAB15): on the 3D accelerated
 // dustybox of VALIDATION B2 (n^3 gas + n^3 dust particles on interleaved cubic
 // lattices in [-2, 2)^3, M4, h_fact 1.2, eps = 0.01, t_s = 1e-3, so
-// dt / t_s ~ 140), the cost of one engine step (density, gas forces, the two
+// dt / t_s ~ 72, the `dt_over_ts` counter), the cost of one engine step (density, gas forces, the two
 // half-step drag updates) and of one drag update alone (moment tensors, the
 // dust and gas pair sums, the apply). The drag's share of a step is
 // 2 x drag / step. Args: n per direction; the drag law, 0 constant t_s, 1
