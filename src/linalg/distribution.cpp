@@ -2,15 +2,61 @@
 #include "mote/linalg/distribution.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace mote::linalg {
 
+namespace {
+
+int length(const IntView1& v) { return static_cast<int>(v.extent(0)); }
+
+/// What is wrong with this rank's description alone ("" when nothing).
+std::string local_problem(const Distribution& d) {
+  if (d.owned < 0 || d.from_left < 0 || d.from_right < 0) return "negative row or ghost count";
+  if ((d.left < 0 && (d.from_left > 0 || length(d.to_left) > 0)) ||
+      (d.right < 0 && (d.from_right > 0 || length(d.to_right) > 0)))
+    return "ghost values from a side without a neighbour";
+  for (const IntView1& list : {d.to_left, d.to_right}) {
+    const auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), list);
+    for (int k = 0; k < length(list); ++k)
+      if (h(k) < 0 || h(k) >= d.owned)
+        return "sends row " + std::to_string(h(k)) + ", which it does not own (0 .. " + std::to_string(d.owned - 1) +
+               ")";
+  }
+  return "";
+}
+
+/// What is wrong with the counts against the neighbours' ("" when nothing): the
+/// values a rank sends to the right are the left ghosts its right neighbour
+/// expects, and the other way round (one exchange of counts).
+std::string count_problem(const Distribution& d) {
+  double sent_to_me_from_left = 0, sent_to_me_from_right = 0;
+  const double to_right = length(d.to_right), to_left = length(d.to_left);
+  d.comm.sendrecv(&to_right, 1, d.right, &sent_to_me_from_left, 1, d.left, 7313);
+  d.comm.sendrecv(&to_left, 1, d.left, &sent_to_me_from_right, 1, d.right, 7314);
+  if (d.left >= 0 && sent_to_me_from_left != d.from_left)
+    return "expects " + std::to_string(d.from_left) + " ghost values from rank " + std::to_string(d.left) +
+           ", which sends " + std::to_string(static_cast<long long>(sent_to_me_from_left));
+  if (d.right >= 0 && sent_to_me_from_right != d.from_right)
+    return "expects " + std::to_string(d.from_right) + " ghost values from rank " + std::to_string(d.right) +
+           ", which sends " + std::to_string(static_cast<long long>(sent_to_me_from_right));
+  return "";
+}
+
+}  // namespace
+
 void Distribution::validate() const {
-  const auto size = [](const IntView1& v) { return static_cast<int>(v.extent(0)); };
-  if (owned < 0 || from_left < 0 || from_right < 0)
-    throw std::invalid_argument("linalg::Distribution: negative row or ghost count");
-  if ((left < 0 && (from_left > 0 || size(to_left) > 0)) || (right < 0 && (from_right > 0 || size(to_right) > 0)))
-    throw std::invalid_argument("linalg::Distribution: ghost values from a side without a neighbour");
+  std::string problem = local_problem(*this);
+  if (distributed()) {
+    // Every rank exchanges its counts and all throw together: a rank throwing alone would leave its
+    // neighbours waiting in their next collective.
+    const std::string counts = count_problem(*this);
+    if (problem.empty()) problem = counts;
+    if (comm.max(problem.empty() ? 0 : 1) > 0 && problem.empty())
+      throw std::invalid_argument("linalg::Distribution: another rank's ghost columns do not fit (its error)");
+  }
+  if (!problem.empty())
+    throw std::invalid_argument("linalg::Distribution: rank " + std::to_string(comm.rank()) + " " + problem);
 }
 
 GhostExchange::GhostExchange(const Distribution& distribution) : d_(distribution) {

@@ -463,8 +463,10 @@ SolveAttempt LinearSolver::attempt(const Preconditioning& preconditioning, const
     if (ghosts_) copy_owned_block(pattern_, scaled_, block_pattern_, block_);
     const int bad = ilu->factorise(block_);
     if ((d.distributed() ? d.comm.max(bad >= 0 ? 1 : 0) : int(bad >= 0)) > 0) {
-      out.worst_row = bad;
-      out.stop_reason = "zero or non-finite pivot in row " + std::to_string(bad);
+      out.worst_row = bad;  // -1 on the ranks whose own pivots are fine
+      out.stop_reason = bad >= 0 ? "zero or non-finite pivot in row " + std::to_string(bad)
+                                 : "zero or non-finite pivot on another rank";
+      out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return out;
     }
   }

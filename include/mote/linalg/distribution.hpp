@@ -27,7 +27,10 @@ struct Distribution {
   int columns() const { return owned + ghosts(); }
   /// More than one rank takes part: reductions and exchanges are needed.
   bool distributed() const { return comm.size() > 1; }
-  /// Throws std::invalid_argument when the counts do not match the send lists.
+  /// Throws std::invalid_argument, on every rank together (collective), when
+  /// a count is negative, ghosts come from a side without a neighbour, a send
+  /// list names a row this rank does not own, or the ghosts a rank expects
+  /// from a neighbour are not as many as that neighbour sends.
   void validate() const;
 };
 
