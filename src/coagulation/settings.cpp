@@ -58,7 +58,10 @@ void declare(core::DeckSchema& s) {
   s.real("coagulation.abs_tol")
       .default_value(1e-10)
       .greater_than(0.0)
-      .doc("Absolute tolerance, in units of the cell's total dust density.");
+      .less_than(1.0)
+      .doc(
+          "Absolute tolerance, in units of the cell's total dust density (below 1: at 1 the error control "
+          "would accept any change of the cell's dust).");
   s.integer("coagulation.max_substeps")
       .default_value(1000000LL)
       .min(1)

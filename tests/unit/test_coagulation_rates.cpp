@@ -336,7 +336,7 @@ TEST(CoagulationTeams, LimitsOfTheBackEndAreRefusedAtSetUp) {
     const auto grid = coag::MassGrid::from_masses(1.0, 1e3, 31);
     EXPECT_THROW(coag::Coagulation(grid, s, 1), std::invalid_argument);
   } else {
-    // A GPU team's scratch lives in shared memory: 600 species (57 KB) do not fit.
+    // A GPU team's scratch lives in shared memory: 600 species (52.8 KB) do not fit.
     const auto grid = coag::MassGrid::from_masses(1.0, 1e30, 600);
     try {
       coag::Coagulation solver(grid, s, 1);

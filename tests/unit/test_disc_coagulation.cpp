@@ -291,6 +291,13 @@ TEST(DiscCoagulation, DeckErrors) {
   coag::CoagulationSettings s;
   s.vertically_integrated = true;
   EXPECT_THROW(disc::DiscCoagulation(f.sim.grid(), f.sim.dust(), s, f.units), core::DeckError);
+  // An absolute tolerance of the cell's whole dust density would accept any sub-step.
+  try {
+    core::Deck::parse(deck_text() + "[coagulation]\nabs_tol = 1.0\n", "abs_tol", schema(), {});
+    ADD_FAILURE() << "coagulation.abs_tol = 1 accepted";
+  } catch (const core::DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("coagulation.abs_tol"), std::string::npos) << e.what();
+  }
 }
 
 // On the disc the collisions' k_B T = mu m_H c_s^2 takes gas.mu, the mean
