@@ -230,7 +230,9 @@ void DiscTemperature::update(double elapsed) {
   prepare_fields();
   try {
     solve(elapsed);
-  } catch (const std::runtime_error& e) {
+  } catch (const core::NumericalError& e) {
+    // The solver's failures, decided alike on every rank. Any other exception passes through as it is:
+    // it may be this rank's alone, and the run then stops every rank (problem_main.cpp stop_after).
     Kokkos::deep_copy(state_.T, T_before_);
     Kokkos::deep_copy(state_.E, E_before_);
     const char* hint = updates_ == 0

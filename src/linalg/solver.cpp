@@ -78,7 +78,7 @@ std::string SolveReport::summary() const {
 }
 
 SolveFailure::SolveFailure(const std::string& message, SolveReport report)
-    : std::runtime_error(message), report_(std::move(report)) {}
+    : core::NumericalError(message), report_(std::move(report)) {}
 
 namespace detail {
 

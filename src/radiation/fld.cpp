@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/radiation/flux_limiter.hpp"
 #include "mote/radiation/planck.hpp"
@@ -518,11 +519,11 @@ void FldSolver::write_back(FldState& state) const {
   const CellMap map = cell_map(grid_, nb_, settings_.boundaries);
   const int bad = first_bad_temperature(map, x_), cells = map.nr * map.nt;
   if (grid_.comm().max(bad < cells ? 1 : 0) > 0)
-    throw std::runtime_error("radiation: the FLD solve gave B <= 0 or non-finite " +
-                             (bad < cells ? "in cell (" + std::to_string(grid_.i_offset + map.i_of(bad) - map.ng) +
-                                                ", " + std::to_string(map.j_of(bad) - map.ng) + ")"
-                                          : std::string("on another rank")) +
-                             "; the previous temperature is kept");
+    throw core::NumericalError("radiation: the FLD solve gave B <= 0 or non-finite " +
+                               (bad < cells ? "in cell (" + std::to_string(grid_.i_offset + map.i_of(bad) - map.ng) +
+                                                  ", " + std::to_string(map.j_of(bad) - map.ng) + ")"
+                                            : std::string("on another rank")) +
+                               "; the previous temperature is kept");
   unpack_solution(grid_, map, constants_.c, constants_.sigma, x_, state);
 }
 
@@ -601,9 +602,9 @@ FldSolver::Relaxation FldSolver::relax_to_steady_state(const FldFields& fields, 
     done.solve_iterations.push_back(report.total_iterations());
     if (change <= max_change && tolerance == exact) return done;
   }
-  throw std::runtime_error("radiation: the steady state did not settle to a relative temperature change of " +
-                           logging::cat(max_change) + " in " + std::to_string(max_solves) +
-                           " solves; change (BiCGStab iterations) per solve: " + done.history());
+  throw core::NumericalError("radiation: the steady state did not settle to a relative temperature change of " +
+                             logging::cat(max_change) + " in " + std::to_string(max_solves) +
+                             " solves; change (BiCGStab iterations) per solve: " + done.history());
 }
 
 std::string FldSolver::Relaxation::history() const {

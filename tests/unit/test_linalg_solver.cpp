@@ -230,6 +230,8 @@ TEST(LinearSolver, FailureKeepsTheInitialGuessAndNamesTheRow) {
     EXPECT_NE(message.find("residual history"), std::string::npos) << message;
     EXPECT_FALSE(failure.report().converged);
     EXPECT_EQ(failure.report().last().iterations, 60);
+    // Decided alike on every rank: a numerical failure (exit 3) that ends a run without stopping its ranks.
+    EXPECT_EQ(mote::core::exit_code_of(failure), mote::core::kExitNonFinite);
   }
   EXPECT_EQ(to_host(x), guess);
 }

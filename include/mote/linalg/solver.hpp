@@ -54,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "mote/core/exit_codes.hpp"
 #include "mote/linalg/crs_pattern.hpp"
 #include "mote/linalg/distribution.hpp"
 
@@ -113,8 +114,10 @@ struct SolveReport {
   std::string summary() const;
 };
 
-/// Thrown by LinearSolver::solve when every rung failed; x is unchanged.
-class SolveFailure : public std::runtime_error {
+/// Thrown by LinearSolver::solve when every rung failed; x is unchanged. Every
+/// rank decides alike (the measures are global), so every rank throws it: a
+/// core::NumericalError (exit 3), which a run ends without stopping the ranks.
+class SolveFailure : public core::NumericalError {
  public:
   SolveFailure(const std::string& message, SolveReport report);
   const SolveReport& report() const { return report_; }

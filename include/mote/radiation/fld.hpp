@@ -115,7 +115,8 @@ class FldSolver {
 
   /// One implicit step of eq. 48-49 over dt (infinity: the steady state).
   /// Active cells of `state` are updated; on a failed solve (or a B <= 0)
-  /// linalg::SolveFailure / std::runtime_error is thrown and state is unchanged.
+  /// linalg::SolveFailure / core::NumericalError is thrown, on every rank
+  /// together, and state is unchanged.
   /// The solve converges to `tolerance`, or to radiation.tolerance when it is 0.
   linalg::SolveReport step(double dt, const FldFields& fields, FldState& state, double tolerance = 0.0);
 
