@@ -740,6 +740,10 @@ void H5File::write_attribute(const std::string& object, const std::string& name,
 void H5File::write_attribute(const std::string& object, const std::string& name, const std::string& value) {
   if (!holds_file()) return;
   build([&] {
+    if (value.size() > kLongestStringAttribute)
+      throw core::IOError("HDF5 cannot store attribute " + name + " of " + object + " in '" + path_ +
+                          "': " + std::to_string(value.size()) + " bytes, more than the " +
+                          std::to_string(kLongestStringAttribute) + " an object header holds");
     Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(type, value.empty() ? 1 : value.size());
     H5Tset_strpad(type, H5T_STR_NULLPAD);

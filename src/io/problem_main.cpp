@@ -14,6 +14,7 @@
 #include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/runtime.hpp"
+#include "mote/io/h5_file.hpp"
 #include "mote/io/restart.hpp"
 #include "mote/io/run_loop.hpp"
 
@@ -166,6 +167,18 @@ core::Deck stored_deck(const std::string& checkpoint, const CommandLine& cl, con
   return core::Deck::parse(text, "deck of " + checkpoint, schema, overrides);
 }
 
+/// Every snapshot and checkpoint stores the resolved deck in one HDF5 attribute (h5_file.hpp): a longer
+/// deck is refused before any work (every write of its run failed, exit 5, before 2026-12-07).
+void check_deck_fits_the_files(const core::Deck& deck) {
+  const std::size_t bytes = deck.to_toml().size();
+  if (bytes > kLongestStringAttribute)
+    throw core::DeckError(deck.source() + ": the resolved deck takes " + std::to_string(bytes) +
+                          " bytes; snapshots and checkpoints store it in one attribute of at most " +
+                          std::to_string(kLongestStringAttribute) +
+                          ": shorten its longest lists (output.snapshot_times: use output.snapshot_dt; cell edges: "
+                          "a spacing)");
+}
+
 /// The problem's initial state. Its set-up may find values that the deck's rules cannot judge
 /// (rules on the rank count, on derived values): a std::invalid_argument it throws is bad input
 /// (exit 2) like a core::DeckError, before any output exists.
@@ -219,6 +232,7 @@ int run_problem(int argc, char** argv, const ProblemDefinition& problem) {
                                        : "no deck given (see --help)");
     }
     if (cl.force && !cl.restart) throw core::DeckError("--force is only for restarts (--restart)");
+    check_deck_fits_the_files(*deck);
     if (cl.restart) {
       restart = *cl.restart == "latest" ? latest_sound_checkpoint(deck->string("output.dir"), comm)
                                         : sound_checkpoint(*cl.restart, comm);

@@ -36,6 +36,10 @@ cases = {
     "missing_required": (GOOD.replace("diffusivity = 0.01", ""), ["missing required key 'transport.diffusivity'"]),
     "syntax_error": (GOOD.replace("[grid]", "[grid"), ["TOML syntax error"]),
     "bad_choice": (GOOD + "[scheme]\nlimiter = \"superbee\"\n", ["key 'scheme.limiter'", "one of \"none\", \"vanleer\", \"mc\""]),
+    # Every output file stores the resolved deck in one HDF5 attribute (at most 65000 bytes).
+    "deck_too_long": (GOOD.replace('dir = "{out}"', 'dir = "{out}"\nsnapshot_times = ['
+                                   + ", ".join(repr(1.1e-6 * k) for k in range(1, 6001)) + "]"),
+                      ["the resolved deck takes", "bytes; snapshots and checkpoints store it in one attribute of at most 65000"]),
 }
 for name, (text, expected) in cases.items():
     out = os.path.join(work, "out_" + name)

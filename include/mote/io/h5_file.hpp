@@ -32,6 +32,7 @@
 
 #include <hdf5.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <string>
@@ -40,6 +41,13 @@
 #include "mote/core/comm.hpp"
 
 namespace mote::io {
+
+/// The longest string attribute a file holds: HDF5's earliest file format
+/// (which mote writes, for every reader since HDF5 1.6) keeps an attribute
+/// in its object's header, at most 64 KiB with its name and type. The
+/// resolved deck, stored in every snapshot and checkpoint, is held to it
+/// before a run starts.
+inline constexpr std::size_t kLongestStringAttribute = 65000;
 
 /// A rank's part of a distributed dataset.
 struct Block {
