@@ -135,8 +135,10 @@ TEST(CoagulationRates, TablesDeliverTheCollidingMass) {
 // below the grid); so no fragment lands in a bin
 // whose lower edge is above the target's mass (two equal grains give
 // fragments no heavier than either). Placing them by the total fragment mass
-// m_i + m_j - m_rem instead put 14 % of an equal pair's fragments above its
-// bin at 7 bins per decade.
+// m_i + m_j - m_rem instead put 6 to 68 % of an equal pair's fragments
+// above its bin on this grid (7 bins per decade; 14 % mid-grid, most near
+// its lowest bin, least at the top where the last bin caps them; computed
+// from eq. 67 by hand).
 TEST(CoagulationRates, FragmentsAreSpreadUpToTheLargestFragment) {
   const auto grid = coag::MassGrid::from_masses(1.0, 1e6, 43);
   const int n = grid.size();
