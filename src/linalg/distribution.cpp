@@ -52,8 +52,10 @@ void Distribution::validate() const {
     // neighbours waiting in their next collective.
     const std::string counts = count_problem(*this);
     if (problem.empty()) problem = counts;
-    if (comm.max(problem.empty() ? 0 : 1) > 0 && problem.empty())
-      throw std::invalid_argument("linalg::Distribution: another rank's ghost columns do not fit (its error)");
+    const int first_at_fault = comm.min(problem.empty() ? comm.size() : comm.rank());
+    if (first_at_fault < comm.size() && problem.empty())
+      throw std::invalid_argument("linalg::Distribution: rank " + std::to_string(first_at_fault) +
+                                  "'s ghost columns do not match its neighbours' sends");
   }
   if (!problem.empty())
     throw std::invalid_argument("linalg::Distribution: rank " + std::to_string(comm.rank()) + " " + problem);
