@@ -475,7 +475,9 @@ bool H5File::exists_here(const std::string& path) const {
   while (true) {
     const size_t end = path.find('/', start);
     const std::string partial = path.substr(0, end);
-    if (H5Lexists(file_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    const htri_t found = H5Lexists(file_, partial.c_str(), H5P_DEFAULT);
+    if (found < 0) fail("look up " + partial, path_);  // an error, not an absence
+    if (found == 0) return false;
     if (end == std::string::npos) return true;
     start = end + 1;
   }
@@ -593,8 +595,10 @@ std::vector<hsize_t> H5File::dims_here(const std::string& name) const {
   if (!exists_here(name)) throw std::runtime_error("'" + path_ + "' has no dataset '" + name + "'");
   Handle dset(check_id(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset " + name, path_), H5Dclose);
   Handle space(check_id(H5Dget_space(dset), "read the dataspace of " + name, path_), H5Sclose);
-  std::vector<hsize_t> d(static_cast<size_t>(H5Sget_simple_extent_ndims(space)));
-  H5Sget_simple_extent_dims(space, d.data(), nullptr);
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) fail("read the rank of " + name, path_);
+  std::vector<hsize_t> d(static_cast<size_t>(rank));
+  check(H5Sget_simple_extent_dims(space, d.data(), nullptr), "read the shape of " + name, path_);
   return d;
 }
 
@@ -794,7 +798,9 @@ bool H5File::has_attribute(const std::string& object, const std::string& name) c
 bool H5File::has_attribute_here(const std::string& object, const std::string& name) const {
   if (!exists_here(object)) return false;
   Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object, path_), H5Oclose);
-  return H5Aexists(obj, name.c_str()) > 0;
+  const htri_t found = H5Aexists(obj, name.c_str());
+  if (found < 0) fail("look up attribute " + object + "@" + name, path_);  // an error, not an absence
+  return found > 0;
 }
 
 }  // namespace mote::io
