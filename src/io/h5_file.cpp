@@ -475,9 +475,7 @@ bool H5File::exists_here(const std::string& path) const {
   while (true) {
     const size_t end = path.find('/', start);
     const std::string partial = path.substr(0, end);
-    const htri_t found = H5Lexists(file_, partial.c_str(), H5P_DEFAULT);
-    if (found < 0) fail("look up " + partial, path_);  // an error, not an absence
-    if (found == 0) return false;
+    if (H5Lexists(file_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
     if (end == std::string::npos) return true;
     start = end + 1;
   }
@@ -798,9 +796,7 @@ bool H5File::has_attribute(const std::string& object, const std::string& name) c
 bool H5File::has_attribute_here(const std::string& object, const std::string& name) const {
   if (!exists_here(object)) return false;
   Handle obj(check_id(H5Oopen(file_, object.c_str(), H5P_DEFAULT), "open object " + object, path_), H5Oclose);
-  const htri_t found = H5Aexists(obj, name.c_str());
-  if (found < 0) fail("look up attribute " + object + "@" + name, path_);  // an error, not an absence
-  return found > 0;
+  return H5Aexists(obj, name.c_str()) > 0;
 }
 
 }  // namespace mote::io
