@@ -1,6 +1,7 @@
 // The (R, theta) grid of RBO24 sec. 2, eq. 1-3 (see include/mote/mesh/grid.hpp).
 #include "mote/mesh/grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -195,6 +196,26 @@ std::vector<double> with_ghosts(const std::vector<double>& e, int ng, bool geome
   return out;
 }
 
+/// A hand-built spec (tests, set-ups) must hold nr + 1 and ntheta + 1 edges;
+/// the deck's are checked with the deck.
+void check_spec_sizes(const GridSpec& spec) {
+  if (spec.nr < 1 || spec.ntheta < 1 || spec.r_edges.size() != size_t(spec.nr) + 1 ||
+      spec.theta_edges.size() != size_t(spec.ntheta) + 1)
+    throw std::invalid_argument(logging::cat("GridSpec: ", spec.nr, " x ", spec.ntheta, " cells need ", spec.nr + 1,
+                                             " radial and ", spec.ntheta + 1, " theta edges, got ", spec.r_edges.size(),
+                                             " and ", spec.theta_edges.size()));
+}
+
+/// Every theta edge, ghosts included, must lie inside (-pi/2, pi/2): beyond the
+/// pole tan(theta) changes sign and a ghost cell's volume and face area with it.
+void check_theta_ghosts(const std::vector<double>& t) {
+  const double reach = std::max(-t.front(), t.back()), pole = 0.5 * M_PI;
+  if (reach >= pole)
+    throw core::DeckError(logging::cat(
+        "grid: the theta ghost cells (the last cell's width continued) would reach ", reach,
+        " rad, at or beyond the pole (pi/2); lower grid.theta_max (or raise grid.theta_min) or use more theta cells"));
+}
+
 RealView1 to_device(const std::string& name, const std::vector<double>& v) {
   RealView1 d(name, v.size());
   Kokkos::deep_copy(d, UnmanagedHostView<Real*>(const_cast<double*>(v.data()), v.size()));
@@ -245,6 +266,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   if (base < ng)  // the fewest cells of any rank: every rank refuses, none waits for the others
     throw core::DeckError(logging::cat("grid.nr = ", nr_global, " gives ranks fewer than ", ng, " radial cells on ",
                                        size_, " ranks; increase grid.nr or use fewer ranks"));
+  check_spec_sizes(spec);
   r_edges_global = spec.r_edges;
   theta_edges_global = spec.theta_edges;
 
@@ -256,6 +278,7 @@ Grid::Grid(const GridSpec& spec, const core::Comm& comm) : comm_(comm), rank_(co
   std::vector<double> re(nr + 2 * ng + 1);
   for (int k = 0; k <= nr + 2 * ng; ++k) re[k] = all_r[i_offset + k];
   const auto t = with_ghosts(spec.theta_edges, ng, false);
+  check_theta_ghosts(t);
 
   std::vector<double> rc(nr + 2 * ng), dr(nr + 2 * ng), tcv(nt + 2 * ng);
   for (int i = 0; i < nr + 2 * ng; ++i) {
