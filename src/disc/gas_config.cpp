@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "mote/core/log.hpp"
+
 namespace mote::disc {
 
 namespace {
@@ -18,15 +20,25 @@ void check_viscosity(const core::Deck& d, core::DeckCheck& check) {
     check.fail("gas.nu0", "or gas.alpha must be > 0 with " + check.quote("gas.viscosity"));
 }
 
-/// The hydrostatic column holds Sigma (a grid across the mid-plane) or Sigma / 2 (a
-/// grid from the mid-plane up or down, mirror symmetry): a grid whose theta range
-/// neither contains nor ends at the mid-plane has no column to normalise.
+/// The hydrostatic column holds Sigma (a grid across the mid-plane, symmetric
+/// about it) or Sigma / 2 (a grid from the mid-plane up or down, mirror
+/// symmetry): any other theta range holds an unknown part of the column, which
+/// eq. 37 would scale to the whole.
 void check_column(const core::Deck& d, core::DeckCheck& check) {
-  const double t0 = d.real("grid.theta_min"), t1 = d.real("grid.theta_max");
+  const bool listed = d.string("grid.theta_spacing") == "edges";
+  const auto& e = d.real_array("grid.theta_edges");
+  if (listed && e.empty()) return;  // the grid's own rule reports the list
+  const std::string lo = listed ? "grid.theta_edges" : "grid.theta_min", hi = listed ? lo : "grid.theta_max";
+  const double t0 = listed ? e.front() : d.real(lo), t1 = listed ? e.back() : d.real(hi);
   if (t0 > 0.0)
-    check.fail("grid.theta_min", "must be <= 0 with the gas disc: its hydrostatic column starts at the mid-plane");
+    check.fail(lo, "must start at or below 0 with the gas disc: its hydrostatic column starts at the mid-plane");
   if (t1 < 0.0)
-    check.fail("grid.theta_max", "must be >= 0 with the gas disc: its hydrostatic column ends at the mid-plane");
+    check.fail(hi, "must end at or above 0 with the gas disc: its hydrostatic column ends at the mid-plane");
+  if (t0 < 0.0 && t1 > 0.0 && std::fabs(t0 + t1) > 1e-12 * (t1 - t0))
+    check.fail(
+        lo, logging::cat("a grid across the mid-plane must be symmetric about it with the gas disc (", t0, " to ", t1,
+                         " rad): the hydrostatic column is normalised to Sigma over both "
+                         "hemispheres (RBO24 eq. 37); use theta_min = -theta_max, or a grid from the mid-plane"));
 }
 
 }  // namespace

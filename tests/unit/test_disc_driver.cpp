@@ -122,14 +122,27 @@ TEST(DiscDriver, NonFiniteCheckNamesTheFirstFieldAndCellInOneReduction) {
   EXPECT_EQ(counter.reductions(), 1);
 }
 
-// A grid above the mid-plane has no hydrostatic column to normalise to Sigma: the
-// deck is refused, naming the key; a grid from the mid-plane up or across it is not.
-TEST(DiscDriver, GasGridMustContainOrEndAtTheMidPlane) {
-  for (const auto& [override, key] :
-       {std::pair{"grid.theta_min=0.05", "grid.theta_min"}, std::pair{"grid.theta_max=-0.02", "grid.theta_max"}}) {
+// A grid above the mid-plane has no hydrostatic column to normalise to Sigma, and
+// one across it unevenly only part of it (eq. 37 would scale that part to the
+// whole: with theta from -0.02 to 0.15 some 60 % too dense): the deck is refused,
+// naming the key, also for an explicit edge list; a grid from the mid-plane up or
+// down, or symmetric across it, is not.
+TEST(DiscDriver, GasGridMustBeSymmetricOrEndAtTheMidPlane) {
+  auto edges = [](double lo, double hi) {
+    std::string list = "grid.theta_edges=[";
+    for (int k = 0; k <= 24; ++k) list += (k ? ", " : "") + std::to_string(lo + (hi - lo) * k / 24.0);
+    return list + "]";
+  };
+  const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
+      {{"grid.theta_min=0.05"}, "grid.theta_min"},
+      {{"grid.theta_max=-0.02"}, "grid.theta_max"},
+      {{"grid.theta_min=-0.02"}, "grid.theta_min"},
+      {{"grid.theta_spacing=\"edges\"", edges(0.05, 0.3)}, "grid.theta_edges"},
+      {{"grid.theta_spacing=\"edges\"", edges(-0.1, 0.3)}, "grid.theta_edges"}};
+  for (const auto& [overrides, key] : refused) {
     try {
-      make_deck({override});
-      ADD_FAILURE() << override << " was accepted";
+      make_deck(overrides);
+      ADD_FAILURE() << overrides.back() << " was accepted";
     } catch (const core::DeckError& e) {
       EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("mid-plane"), std::string::npos) << e.what();
@@ -137,6 +150,9 @@ TEST(DiscDriver, GasGridMustContainOrEndAtTheMidPlane) {
   }
   EXPECT_NO_THROW(make_deck({"grid.theta_min=0.0"}));
   EXPECT_NO_THROW(make_deck({"grid.theta_max=0.0"}));
+  EXPECT_NO_THROW(make_deck({"grid.theta_min=-0.3", "grid.theta_max=0.3"}));
+  EXPECT_NO_THROW(make_deck({"grid.theta_spacing=\"edges\"", edges(0.0, 0.3)}));
+  EXPECT_NO_THROW(make_deck({"grid.theta_spacing=\"edges\"", edges(-0.3, 0.3)}));
 }
 
 TEST(DiscDriver, SchedulesCallSubSolversWhenDue) {
