@@ -86,4 +86,4 @@ def write_dsharp_table(path, sizes_cm, wavelengths_um, m, rho_grain):
         for a in sizes_cm:
             for lam in wavelengths_um:
                 k_abs, k_sca, g = opacities(a, lam * 1e-4, m, rho_grain)
-                out.write(f"{a:.10e} {lam:.10e} {k_abs:.10e} {k_sca:.10e} {max(g, 0.0):.10e}\n")
+                out.write(f"{a:.10e} {lam:.10e} {k_abs:.10e} {k_sca:.10e} {g:.10e}\n")

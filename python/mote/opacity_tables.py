@@ -15,9 +15,8 @@ That file is not part of mote (the package is GPL-3.0); install the package
 
 and set ``radiation.opacity_file = "dsharp.dat"``. The table keeps every
 size and wavelength of the npz. mote reads g as the forward-scattering
-correction k_sca (1 - g); the DSHARP g has values down to about -2e-6 (round-off
-of isotropic scattering), which the format's reader refuses, so g is
-written clipped to [0, 1] (a change of k_sca (1 - g) below 2e-6 relative).
+correction k_sca (1 - g), g in [-1, 1]; the DSHARP g has values down to about
+-2e-6 (round-off of isotropic scattering), written as they are.
 """
 
 import os
@@ -38,7 +37,9 @@ def write_table(path, sizes_cm, wavelengths_cm, k_abs, k_sca, g):
         raise ValueError("sizes and wavelengths must increase")
     if np.any(np.asarray(k_abs) < 0) or np.any(np.asarray(k_sca) < 0):
         raise ValueError("opacities must be >= 0")
-    g = np.clip(np.asarray(g, dtype=float), 0.0, 1.0)
+    g = np.asarray(g, dtype=float)
+    if np.any(np.abs(g) > 1):
+        raise ValueError("the asymmetry factor g must lie in [-1, 1]")
     partial = path + ".partial"  # renamed over path when complete: an existing table is never left half written
     with open(partial, "w") as out:
         out.write(f"{shape[0]} {shape[1]}\n")

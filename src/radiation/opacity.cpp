@@ -47,8 +47,12 @@ std::vector<Line> read_lines(const std::string& path, bool comments) {
   throw OpacityFileError(path + ":" + std::to_string(line) + ": " + what);
 }
 
-/// The numbers of a line: between `least` and `most` of them, finite, >= 0.
-std::vector<double> numbers(const std::string& path, const Line& line, std::size_t least, std::size_t most) {
+constexpr std::size_t kNoSignedColumn = ~std::size_t(0);
+
+/// The numbers of a line: between `least` and `most` of them, finite, >= 0 but
+/// the one in column `signed_column` (an asymmetry factor g), which may be negative.
+std::vector<double> numbers(const std::string& path, const Line& line, std::size_t least, std::size_t most,
+                            std::size_t signed_column = kNoSignedColumn) {
   std::istringstream in(line.text);
   std::vector<double> v;
   std::string word;
@@ -61,7 +65,8 @@ std::vector<double> numbers(const std::string& path, const Line& line, std::size
       used = 0;
     }
     if (used != word.size()) fail(path, line.number, "'" + word + "' is not a number");
-    if (!std::isfinite(x) || x < 0.0) fail(path, line.number, "'" + word + "' must be finite and >= 0");
+    if (!std::isfinite(x)) fail(path, line.number, "'" + word + "' must be finite");
+    if (x < 0.0 && v.size() != signed_column) fail(path, line.number, "'" + word + "' must be >= 0");
     v.push_back(x);
   }
   if (v.size() < least || v.size() > most)
@@ -114,9 +119,9 @@ OpacityTable read_dsharp_table(const std::string& path) {
   for (int a = 0; a < na; ++a)
     for (int l = 0; l < nl; ++l) {
       const Line& line = lines[1 + a * nl + l];
-      const auto v = numbers(path, line, 4, 5);
+      const auto v = numbers(path, line, 4, 5, 4);
       const double size = v[0], lambda = v[1] * cm_per_um, g = v.size() == 5 ? v[4] : 0.0;
-      if (g > 1.0) fail(path, line.number, "the asymmetry factor g must lie in [0, 1]");
+      if (std::fabs(g) > 1.0) fail(path, line.number, "the asymmetry factor g must lie in [-1, 1]");
       if (l == 0 && a > 0 && !(size > t.sizes_cm[a - 1])) fail(path, line.number, "grain sizes must increase");
       if (l > 0 && size != t.sizes_cm[a]) fail(path, line.number, "the grain size changes inside its block");
       if (l > 0 && !(lambda > t.wavelengths_cm[l - 1])) fail(path, line.number, "wavelengths must increase");
@@ -143,12 +148,12 @@ OpacityTable read_radmc_dustkappa(const std::string& path, double size_cm) {
   OpacityTable t = empty_table({size_cm}, std::vector<double>(nl));
   for (int l = 0; l < nl; ++l) {
     const Line& line = lines[2 + l];
-    const auto v = numbers(path, line, 1 + iformat, 1 + iformat);
+    const auto v = numbers(path, line, 1 + iformat, 1 + iformat, 3);
     const double lambda = v[0] * cm_per_um;
     if (!(lambda > 0.0) || (l > 0 && !(lambda > t.wavelengths_cm[l - 1])))
       fail(path, line.number, "wavelengths must be > 0 and increase");
     const double g = iformat == 3 ? v[3] : 0.0;
-    if (g > 1.0) fail(path, line.number, "the asymmetry factor g must lie in [0, 1]");
+    if (std::fabs(g) > 1.0) fail(path, line.number, "the asymmetry factor g must lie in [-1, 1]");
     t.wavelengths_cm[l] = lambda;
     t.absorption[l] = v[1];
     t.scattering[l] = iformat >= 2 ? v[2] * (1.0 - g) : 0.0;

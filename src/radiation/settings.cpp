@@ -72,9 +72,10 @@ void declare_star_and_opacity(core::DeckSchema& s) {
       .default_value(std::string("fixed"))
       .one_of({"fixed", "local"})
       .doc(
-          "Opacities of the FLD bands from the stellar bins: Planck (absorption) and Rosseland (total) means at "
-          "radiation.T_binning, or per cell at its temperature for its mixture of species (RBO24 sec. 4.2, as "
-          "cuDisc), taken at every temperature update.");
+          "Opacities of the FLD bands from the stellar bins: fixed, the sum over species of each species' Planck "
+          "(absorption) and Rosseland (total) means at radiation.T_binning (exact for the Planck mean; a mixture's "
+          "Rosseland mean is not the sum of its species' means, so an approximation); local, per cell at its "
+          "temperature for its mixture of species (RBO24 sec. 4.2, as cuDisc), taken at every temperature update.");
   s.real("radiation.T_binning")
       .default_value(100.0)
       .greater_than(0.0)

@@ -109,11 +109,27 @@ TEST(Opacity, MalformedDsharpTablesNameFileAndLine) {
   };
   check("2 2\n1e-4 1 1 1\n1e-4 10 1 1\n1e-2 1 1 1\n", "4:", "announces 2 x 2 rows");
   check("1 2\n1e-4 1 1 x1\n1e-4 10 1 1\n", "2:", "'x1' is not a number");
-  check("1 2\n1e-4 1 -1 1\n1e-4 10 1 1\n", "2:", "finite and >= 0");
+  check("1 2\n1e-4 1 -1 1\n1e-4 10 1 1\n", "2:", "'-1' must be >= 0");
+  check("1 2\n1e-4 1 1 1 -1.5\n1e-4 10 1 1\n", "2:", "g must lie in [-1, 1]");
+  check("1 2\n1e-4 1 1 1 inf\n1e-4 10 1 1\n", "2:", "must be finite");
   check("1 2\n1e-4 10 1 1\n1e-4 1 1 1\n", "3:", "wavelengths must increase");
   check("2 1\n1e-2 1 1 1\n1e-4 1 1 1\n", "3:", "grain sizes must increase");
   check("1 2\n1e-4 1 1\n1e-4 10 1 1\n", "2:", "expected 4 to 5 numbers");
   EXPECT_NE(error_of([] { read_dsharp_table("/nonexistent/opacity.dat"); }).find("cannot open"), std::string::npos);
+}
+
+// Mie and DSHARP asymmetry factors may be negative (backward scattering, or the
+// round-off of isotropic scattering: DSHARP's g dips to -2e-6): read as
+// k_sca (1 - g), in both formats.
+TEST(Opacity, NegativeAsymmetryFactorsAreRead) {
+  const auto dsharp = write_file("negative_g.dat", "1 2\n1e-4 1 1 4 -1e-6\n1e-4 10 1 4 -0.5\n");
+  const auto t = read_dsharp_table(dsharp);
+  EXPECT_DOUBLE_EQ(t.k_sca(0, 0), 4.0 * (1.0 + 1e-6));
+  EXPECT_DOUBLE_EQ(t.k_sca(0, 1), 6.0);
+  const auto radmc = write_file("dustkappa_negative_g.inp", "3\n2\n0.1 100 50 -0.25\n1.0 30 10 1.0\n");
+  const auto r = read_radmc_dustkappa(radmc, 1e-4);
+  EXPECT_DOUBLE_EQ(r.k_sca(0, 0), 62.5);
+  EXPECT_DOUBLE_EQ(r.k_sca(0, 1), 0.0);
 }
 
 TEST(Opacity, RadmcDustkappaIsRead) {
