@@ -374,6 +374,10 @@ def main():
 
     dz = 0.8 * col.spacing
     picks = [int(np.argmin(abs(times - o * col.orbit))) for o in args.orbits]
+    spacing = np.median(np.diff(times)) if len(times) > 1 else 0.0
+    for o, k in zip(args.orbits, picks):  # a run that stopped early has no snapshot at the later orbits
+        if abs(times[k] - o * col.orbit) > 0.5 * spacing + 1e-9 * o * col.orbit:
+            check(False, f"no snapshot at {o:g} orbits: the nearest is at {times[k] / col.orbit:.3f} orbits")
     fronts = []
     two_fluid_run = snaps[-1][5] is None
     # One fluid: the front of the largest dust fraction; two-fluid: of every species' particles.

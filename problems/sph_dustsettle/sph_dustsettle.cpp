@@ -29,28 +29,6 @@ namespace {
 
 using namespace mote;
 
-/// Adds the dust mass (before and after the negative-eps floor), the mass the
-/// S-variable projection removed and the particles outside the terminal-velocity
-/// approximation to the history.
-class SettleSimulation final : public sph::SphSimulation {
- public:
-  using SphSimulation::SphSimulation;
-
-  std::vector<io::Diagnostic> diagnostics() const override {
-    auto out = SphSimulation::diagnostics();
-    const auto* one_fluid = system_->module<sph::OneFluidDust>();
-    if (!one_fluid) return out;  // the two-fluid module writes its own columns (dust_mass, momenta, heating)
-    const auto d = system_->diagnostics();
-    out.push_back({"dust_mass", d.dust_mass});                             // after the floor
-    out.push_back({"dust_mass_unfloored", d.dust_mass - d.dust_floored});  // before the floor
-    out.push_back({"dust_projected", d.dust_projected});                   // removed by the S-variable projection
-    // Particles where eps T_s exceeds the Courant time-step (PL15 eq. 18): the terminal-velocity
-    // approximation fails there (the low-density gas above the column).
-    out.push_back({"tva_violations", static_cast<double>(one_fluid->tva_violations())});
-    return out;
-  }
-};
-
 /// Progress lines for the gas-only relaxation, every run.progress_interval wall seconds (none when 0).
 std::function<void(const sph::SphSystem&)> relax_progress(Real t_relax, const core::Deck& d) {
   const double interval = d.real("run.progress_interval");
@@ -161,7 +139,7 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   logging::info("sph_dustsettle: ", col.particles.size(), " particles, ", ds.nspecies, " species, orbit = ", c.orbit(),
                 ", mid-plane t_s Omega0 of the largest grain = ",
                 sph::ts_epstein(ds.rho_grain, ds.sizes.back(), c.rho0, c.sound_speed(), 1.0) * c.omega());
-  return std::make_unique<SettleSimulation>(std::move(sys), ctx.units);
+  return std::make_unique<sph::SphSimulation>(std::move(sys), ctx.units);
 }
 
 }  // namespace

@@ -26,10 +26,13 @@ class Verdict:
 
 
 def sph_conservation(v, run_dir, energy_tol, momentum_tol=1e-12, mass=True):
-    """VALIDATION A7 from an SPH run's history.txt: total mass to 1e-12 relative (if `mass`), x momentum to
-    momentum_tol of the run's momentum scale (the largest sum m|v| of the history), total energy to energy_tol
-    relative; each a PASS or FAIL line of the Verdict v."""
+    """VALIDATION A7 from an SPH run's history.txt: total mass to 1e-12 relative (if `mass`), the dust mass before
+    the floor (a one-fluid run's dust_mass_unfloored column) to 1e-12 relative, x momentum to momentum_tol of the
+    run's momentum scale (the largest sum m|v| of the history), total energy to energy_tol relative; each a PASS or
+    FAIL line of the Verdict v."""
     import os
+
+    import numpy as np
 
     from .history import read_history
 
@@ -44,5 +47,9 @@ def sph_conservation(v, run_dir, energy_tol, momentum_tol=1e-12, mass=True):
     de = abs(h["energy"][-1] - h["energy"][0]) / abs(h["energy"][0])
     if mass:
         v.check(dm <= 1e-12, f"mass conserved: relative drift {dm:.1e} <= 1e-12")
+    if "dust_mass_unfloored" in h.dtype.names:
+        dust = h["dust_mass_unfloored"]
+        dd = np.max(np.abs(dust - dust[0])) / dust[0]
+        v.check(dd <= 1e-12, f"dust mass (before the floor) conserved: largest relative drift {dd:.1e} <= 1e-12")
     v.check(dp <= momentum_tol, f"momentum conserved: drift {dp:.1e} <= {momentum_tol:g} of the largest sum m|v|")
     v.check(de <= energy_tol, f"total energy conserved: relative drift {de:.1e} <= {energy_tol:g}")

@@ -343,6 +343,14 @@ void OneFluidDust::add_diagnostics(const SphSystem& sys, Diagnostics& dg) const 
   dg.dust_projected = projected_mass();
 }
 
+std::vector<io::Diagnostic> OneFluidDust::history(const SphSystem& sys) const {
+  const Real mass = dust_mass(sys.particles());
+  return {{"dust_mass", mass},
+          {"dust_mass_unfloored", mass - floored_mass()},
+          {"dust_projected", projected_mass()},
+          {"tva_violations", static_cast<Real>(tva_violations_)}};
+}
+
 void OneFluidDust::write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const {
   const DustSnapshot ds = snapshot(sys.particles());
   const int n = sys.particles().n, dim = sys.particles().dim, ns = nspecies();

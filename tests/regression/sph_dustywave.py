@@ -4,8 +4,8 @@ K = 100 and 1000 and both discretisations of the dust equation (direct second
 derivatives, PL15 sec. 3.4; two first derivatives, sec. 3.1) and the deck's
 gas-velocity PdV work; check.py finds L2_rel(v_g), L2_rel(v_d) against the
 linear two-fluid solution within VALIDATION's ceilings (0.02 at K = 1000,
-0.06 at K = 100) and writes a figure; mass and momentum are conserved to
-1e-12 and energy to 1e-6.
+0.06 at K = 100) and writes a figure; mass, the dust mass and momentum are
+conserved to 1e-12 and energy to 1e-11 (check.py's defaults, A7).
 
 usage: sph_dustywave.py EXE WORKDIR
 """

@@ -61,6 +61,11 @@ class OneFluidDust : public SphModule {
   std::string timestep_name() const override { return "one-fluid dust time-step (diffusion/stopping time)"; }
   void reorder(ParticleReorder& r) override;
   void add_diagnostics(const SphSystem& sys, Diagnostics& dg) const override;
+  /// History columns: dust_mass (after the negative-eps floor), dust_mass_unfloored
+  /// (before it; VALIDATION A7), dust_projected (removed by the S-variable
+  /// projection) and tva_violations (particles where eps t_s exceeds the Courant
+  /// step, PL15 eq. 18: the terminal-velocity approximation fails there).
+  std::vector<io::Diagnostic> history(const SphSystem& sys) const override;
   void write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const override;
   /// ndustsmall = N and one array "dustfrac" per species (eps_j, Phantom's tag for each of them).
   void write_phantom_dump(const SphSystem& sys, io::PhantomDump& dump) const override;
