@@ -1,6 +1,8 @@
 // Radial halo exchange (see include/mote/mesh/halo.hpp).
 #include "mote/mesh/halo.hpp"
 
+#include <utility>
+
 #include "mote/core/loops.hpp"
 
 namespace mote::mesh {
@@ -52,24 +54,27 @@ void RadialHalo::exchange_impl(const ViewT& f) {
   if (left_ < 0 && right_ < 0) return;
   const int per_row = extent_or_one(f, 1) * extent_or_one(f, 2) * extent_or_one(f, 3), ng = ng_, nr = nr_;
   const int half = ng * per_row;
-  if (static_cast<int>(send_.extent(0)) < 2 * half) {
+  if (static_cast<int>(send_.extent(0)) < 2 * half) {  // the largest field's rows: set up once, not per step
     send_ = RealView1("halo::send", 2 * half);
     recv_ = RealView1("halo::recv", 2 * half);
+    send_h_ = Kokkos::create_mirror_view(send_);
+    recv_h_ = Kokkos::create_mirror_view(recv_);
   }
   auto send = send_, recv = recv_;
+  auto send_h = send_h_, recv_h = recv_h_;
+  const auto used = std::make_pair(0, 2 * half);
   // send[0, half): first ng active rows (to the left); send[half, 2 half): last ng active rows (to the right).
   for_rows(
       "mesh::halo_pack", f, ng, KOKKOS_LAMBDA(int g, int m, int a, int b, int c) {
         send(g * per_row + m) = element(f, ng + g, a, b, c);
         send(half + g * per_row + m) = element(f, nr + g, a, b, c);
       });
-  auto send_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), send);
-  auto recv_h = Kokkos::create_mirror_view(recv);
+  Kokkos::deep_copy(Kokkos::subview(send_h, used), Kokkos::subview(send, used));  // no copy on a host back-end
   // Rightward: my last rows go right; I receive my left neighbour's last rows.
   comm_.sendrecv(send_h.data() + half, half, right_, recv_h.data(), half, left_, 21);
   // Leftward: my first rows go left; I receive my right neighbour's first rows.
   comm_.sendrecv(send_h.data(), half, left_, recv_h.data() + half, half, right_, 22);
-  Kokkos::deep_copy(recv, recv_h);
+  Kokkos::deep_copy(Kokkos::subview(recv, used), Kokkos::subview(recv_h, used));
   const bool fill_left = left_ >= 0, fill_right = right_ >= 0;
   for_rows(
       "mesh::halo_unpack", f, ng, KOKKOS_LAMBDA(int g, int m, int a, int b, int c) {

@@ -56,6 +56,8 @@ StellarIrradiation::StellarIrradiation(const mesh::Grid& grid, Star star, std::v
   tau_ = RealView3("radiation::tau_star", grid.nr_total(), grid.nt_total(), nB_);
   tau_start_ = RealView2("radiation::tau_star_start", grid.nt_total(), nB_);
   tau_end_ = RealView2("radiation::tau_star_end", grid.nt_total(), nB_);
+  tau_start_h_ = Kokkos::create_mirror_view(tau_start_);
+  tau_end_h_ = Kokkos::create_mirror_view(tau_end_);
 }
 
 namespace {
@@ -64,17 +66,16 @@ constexpr int kOpticalDepthTag = 7301;
 
 /// Radial slabs (mesh::Grid): rank r's rays start with the optical depth at
 /// which rank r - 1's end, received here (rank 0 starts from 0).
-void receive_ray_start(const core::Comm& comm, const RealView2& start) {
+void receive_ray_start(const core::Comm& comm, const RealView2& start, const RealView2::HostMirror& host) {
   if (comm.rank() == 0) return;
-  auto host = Kokkos::create_mirror_view(start);
   comm.sendrecv(nullptr, 0, -1, host.data(), static_cast<int>(host.size()), comm.rank() - 1, kOpticalDepthTag);
   Kokkos::deep_copy(start, host);
 }
 
 /// Sends the optical depth at the outer edge of this rank's slab to rank r + 1.
-void send_ray_end(const core::Comm& comm, const RealView2& end) {
+void send_ray_end(const core::Comm& comm, const RealView2& end, const RealView2::HostMirror& host) {
   if (comm.rank() == comm.size() - 1) return;
-  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), end);
+  Kokkos::deep_copy(host, end);
   comm.sendrecv(host.data(), static_cast<int>(host.size()), comm.rank() + 1, nullptr, 0, -1, kOpticalDepthTag);
 }
 
@@ -93,7 +94,7 @@ void StellarIrradiation::heat(const RealView3& extinction, const RealView3& abso
   // the ranks' slabs in turn (each continues the sum where the inner one ended,
   // so that any number of ranks adds in the same order as one).
   const core::Comm& comm = grid_.comm();
-  if (comm.size() > 1) receive_ray_start(comm, start);
+  if (comm.size() > 1) receive_ray_start(comm, start, tau_start_h_);
   par_for(
       "radiation::stellar_optical_depth", j0, j1, 0, nB, KOKKOS_LAMBDA(int j, int B) {
         const Real inv_cos = 1.0 / math::cos(tc(j));
@@ -104,7 +105,7 @@ void StellarIrradiation::heat(const RealView3& extinction, const RealView3& abso
         }
         end(j, B) = t;
       });
-  if (comm.size() > 1) send_ray_end(comm, end);
+  if (comm.size() > 1) send_ray_end(comm, end, tau_end_h_);
   Kokkos::deep_copy(heating, 0.0);
   Kokkos::deep_copy(scattering, 0.0);
   const auto L = L_;

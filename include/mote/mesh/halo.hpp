@@ -29,7 +29,8 @@ class RadialHalo {
  private:
   core::Comm comm_;
   int ng_, nr_, left_, right_;
-  RealView1 send_, recv_;
+  RealView1 send_, recv_;                  // device buffers, grown to the largest field
+  RealView1::HostMirror send_h_, recv_h_;  // their host copies for MPI (the same memory on a host back-end)
 };
 
 }  // namespace mote::mesh

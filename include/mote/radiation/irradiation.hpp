@@ -51,11 +51,12 @@ class StellarIrradiation {
   const mesh::Grid& grid_;
   int nB_;
   std::vector<double> L_h_;
-  RealView1 L_;           // (nB)
-  IntView1 band_of_bin_;  // (nB): FLD band of each bin's central wavelength
-  RealView3 tau_;         // (nr_total, nt_total, nB): optical depth to the cell's inner edge
-  RealView2 tau_start_;   // (nt_total, nB): at this rank's inner edge (0 on rank 0)
-  RealView2 tau_end_;     // (nt_total, nB): at its outer edge, for the next rank
+  RealView1 L_;                                    // (nB)
+  IntView1 band_of_bin_;                           // (nB): FLD band of each bin's central wavelength
+  RealView3 tau_;                                  // (nr_total, nt_total, nB): optical depth to the cell's inner edge
+  RealView2 tau_start_;                            // (nt_total, nB): at this rank's inner edge (0 on rank 0)
+  RealView2 tau_end_;                              // (nt_total, nB): at its outer edge, for the next rank
+  RealView2::HostMirror tau_start_h_, tau_end_h_;  // their host copies for MPI, made once
 };
 
 /// Stellar power the grid takes per radian of azimuth: the sum over the active
