@@ -110,19 +110,18 @@ void DiscSimulation::write_snapshot(io::SnapshotWriter& out) const {
   mesh::describe_grid(out, *grid_);
   gas_->write_snapshot(out);
   const auto& u = units_;
-  const auto& W = dust_->W;
-  const auto ts = dust_->stopping_times();
+  // One host copy of the dust state and the stopping times per snapshot, every species' fields taken from it.
+  const auto W = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dust_->W);
+  const auto ts = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dust_->stopping_times());
   const int ns = dust_->species();
+  auto field = [&](const auto& h, auto... trailing) { return mesh::active_cells_of_host(*grid_, h, trailing...); };
   for (int s = 0; s < ns; ++s) {
     const std::string n = std::to_string(s);
-    out.cell_field("dust_rho_" + n, mesh::active_cells(*grid_, W, s, kRho).data(), {"code density", u.density()});
-    out.cell_field("dust_vR_" + n, mesh::active_cells(*grid_, W, s, kVR).data(), {"code velocity", u.velocity()});
-    out.cell_field("dust_vphi_" + n, mesh::active_cells(*grid_, W, s, kVphi).data(), {"code velocity", u.velocity()});
-    out.cell_field("dust_vZ_" + n, mesh::active_cells(*grid_, W, s, kVZ).data(), {"code velocity", u.velocity()});
-    auto ts_s = Kokkos::subview(ts, Kokkos::ALL, Kokkos::ALL, s);
-    RealView2 ts2("disc::ts_species", grid_->nr_total(), grid_->nt_total());
-    Kokkos::deep_copy(ts2, ts_s);
-    out.cell_field("dust_ts_" + n, mesh::active_cells(*grid_, ts2).data(), {"code time", u.time});
+    out.cell_field("dust_rho_" + n, field(W, s, kRho).data(), {"code density", u.density()});
+    out.cell_field("dust_vR_" + n, field(W, s, kVR).data(), {"code velocity", u.velocity()});
+    out.cell_field("dust_vphi_" + n, field(W, s, kVphi).data(), {"code velocity", u.velocity()});
+    out.cell_field("dust_vZ_" + n, field(W, s, kVZ).data(), {"code velocity", u.velocity()});
+    out.cell_field("dust_ts_" + n, field(ts, s).data(), {"code time", u.time});
   }
   RealView2 vK("disc::v_kepler", grid_->nr_total(), grid_->nt_total());
   auto Rc = grid_->Rc;

@@ -32,19 +32,11 @@ io::Block cell_block(const Grid& grid) {
 }
 
 std::vector<double> active_cells(const Grid& grid, const RealView2& field) {
-  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), field);
-  std::vector<double> out(static_cast<size_t>(grid.nr) * grid.nt);
-  for (int i = 0; i < grid.nr; ++i)
-    for (int j = 0; j < grid.nt; ++j) out[i * grid.nt + j] = h(grid.ng + i, grid.ng + j);
-  return out;
+  return active_cells_of_host(grid, Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), field));
 }
 
 std::vector<double> active_cells(const Grid& grid, const View<Real****>& state, int s, int k) {
-  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), state);
-  std::vector<double> out(static_cast<size_t>(grid.nr) * grid.nt);
-  for (int i = 0; i < grid.nr; ++i)
-    for (int j = 0; j < grid.nt; ++j) out[i * grid.nt + j] = h(grid.ng + i, grid.ng + j, s, k);
-  return out;
+  return active_cells_of_host(grid, Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), state), s, k);
 }
 
 namespace {
