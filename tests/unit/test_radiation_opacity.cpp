@@ -191,4 +191,39 @@ TEST(Opacity, BandMeansOfAGreyTableAreGreyAndPlanckMeanWeightsByB) {
   EXPECT_THROW(band_means(t, edges, {1e-5, 1.06e-5, 1.07e-5, 0.3}, 300.0), std::invalid_argument);  // an empty band
 }
 
+// The Rosseland mean of a non-grey table, kappa_tot = 1e-3 / lambda + 0.01 in one
+// band holding every bin: sum w / sum (w / kappa), with w the bins' integrals of
+// dB_lambda/dT by Simpson's rule here (RBO24 sec. 4.1); an arithmetic mean
+// sum w kappa / sum w would be 1.32 times larger.
+TEST(Opacity, RosselandBandMeanOfANonGreyTableIsTheHarmonicDbDtMean) {
+  std::vector<double> edges, centres;
+  for (int k = 0; k <= 100; ++k) edges.push_back(1e-5 * std::pow(3e4, k / 100.0));
+  for (int k = 0; k < 100; ++k) centres.push_back(std::sqrt(edges[k] * edges[k + 1]));
+  auto t = grey_opacity({1e-4}, centres, 0.0, 0.01);
+  for (int k = 0; k < 100; ++k) t.absorption[k] = 1e-3 / centres[k];
+  const double T = 300.0, c2 = 1.438776877;  // h c / k_B [cm K]
+  const auto dB_dT = [&](double lambda) {    // up to constant factors, which cancel in the mean
+    const double x = c2 / (lambda * T), e = std::exp(x);
+    return std::pow(lambda, -5) * x * e / ((e - 1.0) * (e - 1.0));
+  };
+  double weights = 0.0, inverse = 0.0, arithmetic = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    const int n = 64;  // Simpson in ln(lambda) over the bin
+    const double a = std::log(edges[k]), h = (std::log(edges[k + 1]) - a) / n;
+    double w = 0.0;
+    for (int m = 0; m <= n; ++m) {
+      const double lambda = std::exp(a + m * h);
+      w += (m == 0 || m == n ? 1.0 : (m % 2 ? 4.0 : 2.0)) * dB_dT(lambda) * lambda;
+    }
+    w *= h / 3.0;
+    const double kappa = t.absorption[k] + t.scattering[k];
+    weights += w;
+    inverse += w / kappa;
+    arithmetic += w * kappa;
+  }
+  const double expected = weights / inverse;
+  EXPECT_NEAR(band_means(t, edges, {1e-5, 0.3}, T).rosseland_total[0] / expected, 1.0, 1e-8);
+  EXPECT_GT(arithmetic / weights / expected, 1.3);  // 1.317: the test tells the two means apart
+}
+
 }  // namespace
