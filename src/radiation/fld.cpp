@@ -1,6 +1,7 @@
 // Multi-band FLD (RBO24 sec. 4.1, eq. 40-43, 47-49, app. A); see fld.hpp.
 #include "mote/radiation/fld.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -487,7 +488,8 @@ namespace {
 
 /// First cell whose solved B is <= 0 or not finite; n_cells when none.
 int first_bad_temperature(const CellMap& map, const linalg::Vector& x) {
-  int first_bad = map.nr * map.nt;
+  const int cells = map.nr * map.nt;
+  int first_bad = cells;  // Kokkos::Min overwrites it with the identity (INT_MAX) when no cell is bad
   par_reduce(
       "radiation::fld_check_B", 0, map.nr * map.nt,
       KOKKOS_LAMBDA(int cell, int& first) {
@@ -495,7 +497,7 @@ int first_bad_temperature(const CellMap& map, const linalg::Vector& x) {
         if (!(B > 0.0 && math::isfinite(B)) && cell < first) first = cell;
       },
       Kokkos::Min<int>(first_bad));
-  return first_bad;
+  return std::min(first_bad, cells);
 }
 
 /// T = (B / 4 sigma)^(1/4) and E^b = (c E^b) / c at the active cells.
