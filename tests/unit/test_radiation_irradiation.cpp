@@ -82,6 +82,67 @@ TEST(Irradiation, OpaqueGridTakesAllTheLight) {
   EXPECT_NEAR(Ss(i, j, 0) + Ss(i, j, 1) + Ss(i, j, 2) + Ss(i, j, 3), S(i, j), 1e-12 * S(i, j));
 }
 
+// RBO24 eq. 45-46 cell by cell: along each ray (theta_j, bin B) the cell takes
+// L_B omega_j / 4 pi (e^-tau_i - e^-tau_i+1) of the starlight, tau summed here
+// over path lengths dR / cos(theta_c) (omega_j = sin(theta_j+1) - sin(theta_j)
+// per radian of azimuth); the absorbed part (kappa_abs / kappa_ext, different in
+// every bin) heats, the rest is the scattering source of the FLD band holding
+// the bin's central wavelength. Extinction varies from cell to cell and bin to
+// bin (an optical depth of about 3 along a ray).
+TEST(Irradiation, EachCellTakesItsShareOfEveryBinAndScattersIntoItsBand) {
+  const mesh::Grid grid(thin_disc(), core::Comm::world());
+  const auto constants = radiation::RadiationConstants::in(units::UnitSystem::cgs_units());
+  const auto bins = stellar_bins();
+  radiation::StellarIrradiation star(grid, sun_like(), bins, fld_bands, constants);
+  const int nB = star.bins(), nb = static_cast<int>(fld_bands.size()) - 1;
+  const auto kappa = [](int i, int j, int B) { return 4e-15 * (1.0 + 0.8 * std::sin(0.7 * i + 1.3 * j + 0.4 * B)); };
+  const auto absorbed_fraction = [&](int B) { return (B + 1.0) / (nB + 1.0); };
+  RealView3 ext("ext", grid.nr_total(), grid.nt_total(), nB), abs("abs", grid.nr_total(), grid.nt_total(), nB);
+  auto ext_h = Kokkos::create_mirror_view(ext);
+  auto abs_h = Kokkos::create_mirror_view(abs);
+  for (int i = 0; i < grid.nr_total(); ++i)
+    for (int j = 0; j < grid.nt_total(); ++j)
+      for (int B = 0; B < nB; ++B) {
+        ext_h(i, j, B) = kappa(i, j, B);
+        abs_h(i, j, B) = absorbed_fraction(B) * kappa(i, j, B);
+      }
+  Kokkos::deep_copy(ext, ext_h);
+  Kokkos::deep_copy(abs, abs_h);
+  RealView2 heating("S", grid.nr_total(), grid.nt_total());
+  RealView3 scattering("Ssca", grid.nr_total(), grid.nt_total(), nb);
+  star.heat(ext, abs, heating, scattering);
+  auto S = Kokkos::create_mirror_view_and_copy(HostSpace(), heating);
+  auto Ss = Kokkos::create_mirror_view_and_copy(HostSpace(), scattering);
+  const auto L = star.bin_luminosities();
+  std::vector<int> band(nB);
+  for (int B = 0; B < nB; ++B) {
+    const double centre = std::sqrt(bins[B] * bins[B + 1]);
+    while (band[B] < nb - 1 && centre >= fld_bands[band[B] + 1]) ++band[B];
+  }
+  double worst = 0.0, tau_max = 0.0;
+  for (int j = grid.j_begin(); j < grid.j_end(); ++j) {
+    const double omega = std::sin(grid.te_h(j + 1)) - std::sin(grid.te_h(j));
+    std::vector<double> tau(nB, 0.0);
+    for (int i = grid.i_begin(); i < grid.i_end(); ++i) {
+      double heat = 0.0;
+      std::vector<double> scattered(nb, 0.0);
+      for (int B = 0; B < nB; ++B) {
+        const double next = tau[B] + kappa(i, j, B) * (grid.Re_h(i + 1) - grid.Re_h(i)) / std::cos(grid.tc_h(j));
+        const double taken = L[B] * omega / (4.0 * M_PI) * (std::exp(-tau[B]) - std::exp(-next));
+        heat += absorbed_fraction(B) * taken;
+        scattered[band[B]] += (1.0 - absorbed_fraction(B)) * taken;
+        tau[B] = next;
+      }
+      worst = std::max(worst, std::fabs(grid.V_h(i, j) * S(i, j) / heat - 1.0));
+      for (int b = 0; b < nb; ++b)
+        if (scattered[b] > 0.0) worst = std::max(worst, std::fabs(grid.V_h(i, j) * Ss(i, j, b) / scattered[b] - 1.0));
+    }
+    for (double t : tau) tau_max = std::max(tau_max, t);
+  }
+  EXPECT_GT(tau_max, 1.0);
+  EXPECT_LT(worst, 1e-11);
+}
+
 /// Grey grains (rho kappa = k per cm, no scattering) on thin_disc() around
 /// sun_like(): starlight absorbed, C = 1, open sides at 3 K but the reflecting
 /// mid-plane, solver tolerance 1e-8; T = 100 K, E = 0 to start from.
