@@ -5,7 +5,9 @@
 // reach [-0.5, 0.5] before t = 0.2; 1D, or 3D with periodic y, z. The exact
 // Riemann solution is compared in check.py; finish() prints the mean absolute
 // density error over [-0.5, 0.5] from the C++ exact solver.
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "mote/core/log.hpp"
 #include "mote/io/problem_main.hpp"
@@ -61,7 +63,7 @@ void declare(core::DeckSchema& s) {
       .default_value(0.1)
       .greater_than(0.0)
       .unit("code length")
-      .doc("Box length in y, z (dim > 1).");
+      .doc("Box length in y, z (dim > 1), rounded to whole rows of both halves' spacings.");
   s.real("sod.rho_left")
       .sets_state_size()
       .default_value(1.0)
@@ -78,6 +80,20 @@ void declare(core::DeckSchema& s) {
   s.real("sod.P_right").default_value(0.1).greater_than(0.0).unit("code pressure").doc("Right pressure.");
 }
 
+/// In 2D and 3D both halves fill one periodic cross-section: whole rows of the
+/// right spacing and of the left, which needs dx_right / dx_left = (rho_left /
+/// rho_right)^(1/dim) to be a whole number (2 for Sod's densities in 3D). The
+/// cross-section is rounded to the nearest whole number of right rows.
+double shared_cross_section(double cross, double dx_l, double dx_r) {
+  const double width = std::max(1.0, std::round(cross / dx_r)) * dx_r, rows_l = std::round(width / dx_l);
+  if (std::fabs(rows_l * dx_l - width) > 1e-9 * width)
+    throw core::DeckError(logging::cat(
+        "sod.dim > 1: the two halves' lattices cannot share a periodic cross-section: their spacings' ratio (",
+        "sod.rho_left / sod.rho_right)^(1/dim) = ", dx_r / dx_l,
+        " is not a whole number (it is 2 for the default densities in 3D)"));
+  return width;
+}
+
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const int dim = static_cast<int>(d.integer("sod.dim"));
@@ -88,13 +104,18 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   box.lo[0] = -1.0;
   box.hi[0] = 1.0;
   for (int k = 0; k < dim; ++k) box.periodic[k] = true;
-  for (int k = 1; k < dim; ++k) box.hi[k] = d.real("sod.cross_section");
   const double dx_l = d.real("sod.dx_left"), dx_r = dx_l * std::pow(l.rho / r.rho, 1.0 / dim);
+  if (dim > 1) {
+    const double width = shared_cross_section(d.real("sod.cross_section"), dx_l, dx_r);
+    for (int k = 1; k < dim; ++k) box.hi[k] = width;
+  }
   sph::Box lb = box, rb = box;
   lb.hi[0] = 0.0;
   rb.lo[0] = 0.0;
   const auto ll = sph::cubic_lattice(lb, dx_l), lr = sph::cubic_lattice(rb, dx_r);
   for (int k = 1; k < dim; ++k) {
+    if (std::fabs(ll.box.length(k) - lr.box.length(k)) > 1e-9 * ll.box.length(k))
+      throw std::logic_error("sph_sod: the halves' lattices differ in their cross-section");
     box.lo[k] = ll.box.lo[k];
     box.hi[k] = ll.box.hi[k];
   }

@@ -4,6 +4,10 @@ XDMF point clouds with positions, velocities, h, rho, u, P, mass, type and id,
 check.py finds the mean absolute density error within 1e-2 of the exact
 Riemann solution at t = 0.2, a restarted run is bit-identical, and a restart that changes a key on
 which the particle count depends (the spacing, a density) is refused even with --force, naming the key.
+In 3D (spacing ratio 2) both halves fill one periodic cross-section: the initial SPH densities of the
+two halves' interiors are in the ratio 0.125 to 1e-9 (each lattice's summation bias, 8e-4 at
+h = 1.2 dx, is the same); in 2D (ratio 8^1/2) no cross-section holds whole rows of both, and the deck
+is refused (exit 2).
 
 usage: sph_sod.py EXE WORKDIR
 """
@@ -55,4 +59,18 @@ for key, value in (("sod.dx_left", "0.004"), ("sod.rho_right", "0.25")):
     checks.check(c.returncode == 2 and "the deck changes the size of the state" in c.stdout + c.stderr and
                  f"{key} = " in c.stdout + c.stderr and f"in the checkpoint, {value} now" in c.stdout + c.stderr,
                  f"a restart with {key} (it sets the particle count) changed is refused even with --force, naming it")
+import numpy as np  # noqa: E402
+
+tube = os.path.join(work, "tube3d")
+run([exe, deck, "sod.dim=3", "sod.dx_left=0.02", "run.max_steps=1", f"output.dir={tube}"])
+with h5py.File(mote.list_snapshots(tube)[0]) as f:
+    x, rho = f["particles/position"][:, 0], f["particles/density"][...]
+left, right = rho[(x > -0.8) & (x < -0.2)], rho[(x > 0.2) & (x < 0.8)]
+ratio = right.mean() / left.mean()
+checks.check(abs(ratio / 0.125 - 1) < 1e-9 and np.ptp(right) < 1e-12 * right.mean(),
+             f"3D tube: interior densities {left.mean():.6f} | {right.mean():.6f}, ratio {ratio:.9f} (0.125), "
+             f"uniform on the right to {np.ptp(right) / right.mean():.1e}")
+c = run([exe, deck, "sod.dim=2", f"output.dir={os.path.join(work, 'tube2d')}"], expect=None)
+checks.check(c.returncode == 2 and "cannot share a periodic cross-section" in c.stdout + c.stderr,
+             "2D tube (spacing ratio 8^1/2): refused, exit 2, naming the reason")
 sys.exit(checks.finish())
