@@ -75,6 +75,8 @@ Lattice hexagonal_lattice(const Box& box, Real dx) {
 
 Lattice close_packed_lattice(const Box& box, Real dx) {
   if (box.dim != 3) throw std::invalid_argument("sph::close_packed_lattice: 3D only");
+  if (!box.periodic[0])  // rows and layers shift by up to 1.25 spacings in x, which only a periodic x wraps
+    throw std::invalid_argument("sph::close_packed_lattice: x must be periodic");
   Lattice lat;
   lat.dim = 3;
   lat.box = box;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "mote/setups/lattice.hpp"
@@ -136,6 +137,7 @@ TEST(SphDensity, UniformLattices) {
                 kernel_name(k), ch.max_rho_err, ch.max_h_err);
     EXPECT_LT(ch.max_rho_err, rho_ceiling(k, 2, false)) << kernel_name(k) << " hexagonal";
     EXPECT_LT(ch.max_h_err, 1e-4);
+    EXPECT_THROW(close_packed_lattice(unit_box(3, false), 0.07), std::invalid_argument);  // x not periodic
     const Lattice cp = close_packed_lattice(unit_box(3, true), 0.07);
     const DensityCheck cc = run_density(cp, k, 1.0, 1.0);
     std::printf("[sph density] %-10s 3D close-packed lattice: max |rho/rho0 - 1| = %.2e, max h-rho error = %.2e\n",

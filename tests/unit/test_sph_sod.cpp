@@ -36,6 +36,29 @@ TEST(SphRiemannExact, ToroTest1StarState) {
   EXPECT_NEAR(rs2.v_star(), 0.0, 1e-10);
 }
 
+// Inside Sod's left rarefaction fan (head -c_L = -1.183, tail u* - c*_L = -0.070)
+// at x / t = -0.5, Toro (2009) eq. 4.56: rho = rho_L q^(2/(gamma-1)), u = 2/(gamma+1)
+// (c_L + (gamma-1)/2 u_L + xi), p = p_L q^(2 gamma/(gamma-1)), q = 2/(gamma+1) +
+// (gamma-1)/((gamma+1) c_L) (u_L - xi); and the mirrored problem (a left shock, a
+// right rarefaction) samples as the mirror image with u negated.
+TEST(SphRiemannExact, RarefactionFanAndMirroredProblem) {
+  ExactRiemann rs({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, kGamma);
+  const Real cL = std::sqrt(kGamma), xi = -0.5, g = kGamma;
+  const Real q = 2.0 / (g + 1.0) + (g - 1.0) / ((g + 1.0) * cL) * (0.0 - xi);
+  const auto fan = rs.sample(xi);
+  EXPECT_NEAR(fan.rho, std::pow(q, 2.0 / (g - 1.0)), 1e-12);
+  EXPECT_NEAR(fan.v, 2.0 / (g + 1.0) * (cL + xi), 1e-12);
+  EXPECT_NEAR(fan.p, std::pow(q, 2.0 * g / (g - 1.0)), 1e-12);
+  EXPECT_NEAR(fan.rho, 0.602938, 1e-6);
+  ExactRiemann mirror({0.125, 0.0, 0.1}, {1.0, 0.0, 1.0}, kGamma);
+  for (Real x : {-1.5, -1.0, -0.5, -0.1, 0.05, 0.5, 0.9, 1.2, 1.8}) {
+    const auto a = rs.sample(x), b = mirror.sample(-x);
+    EXPECT_NEAR(b.rho, a.rho, 1e-10) << x;
+    EXPECT_NEAR(b.v, -a.v, 1e-10) << x;
+    EXPECT_NEAR(b.p, a.p, 1e-10) << x;
+  }
+}
+
 struct SodResult {
   Real l1 = 0.0;
   Real energy_drift = 0.0;    ///< |E(0.2) - E(0)| / E(0)

@@ -30,7 +30,7 @@ Lattice cubic_lattice(const Box& box, Real dx);
 Lattice hexagonal_lattice(const Box& box, Real dx);
 
 /// 3D close-packed (hcp, ABAB) lattice; even numbers of rows and layers in
-/// periodic y and z.
+/// periodic y and z; x must be periodic (its rows shift by up to 1.25 spacings).
 Lattice close_packed_lattice(const Box& box, Real dx);
 
 /// Mass in [lo, hi] of the 1D profile rho(s) (composite Simpson, n intervals).
