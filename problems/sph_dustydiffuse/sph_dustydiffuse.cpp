@@ -39,7 +39,7 @@ void declare(core::DeckSchema& s) {
   s.string("dustydiffuse.lattice")
       .default_value(std::string("close_packed"))
       .one_of({"cubic", "close_packed"})
-      .doc("Cubic lattice (n^3) or close-packed (n = 50: 50 x 58 x 60).");
+      .doc("Cubic lattice (n^3) or close-packed (n = 50: 50 x 58 x 62).");
   s.real("dustydiffuse.eps0")
       .default_value(0.1)
       .greater_than(0.0)

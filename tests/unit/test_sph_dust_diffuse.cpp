@@ -84,6 +84,27 @@ const char* name(DustDiscretisation d) {
 // M4 with h = 1.5 dx: with h = 1.2 dx the zeroth-order (lattice normalisation)
 // error of the SPH second derivative sets a floor near 2e-4 at 32^3 (measured
 // orders 1.92, 1.46 and a first/second ratio of 1.6 at 32^3; docs/sph_dust.md).
+// The close-packed set-up of the paper's run (n = 50): 50 x 58 x 62 particles,
+// PL15's 50 x 58 x 60 but for z, whose 61.2 layers the periodic hcp lattice
+// rounds to an even 62 (the box 1.0125 long in z, the density 1 all the same).
+TEST(SphDustDiffuseSetup, ClosePackedPaperLattice) {
+  SphConfig cfg;
+  cfg.cs_iso = 1.0;
+  DustSettings ds;
+  ds.drag = DragLaw::ConstantStoppingTime;
+  ds.stopping_time = {kTs};
+  DustyDiffuse dd;
+  dd.n = 50;
+  dd.close_packed = true;
+  const DustProblem p = dustydiffuse(dd, cfg, ds);
+  EXPECT_EQ(p.particles.size(), 50 * 58 * 62);
+  EXPECT_NEAR(p.box.length(2), 62 * 0.02 * std::sqrt(2.0 / 3.0), 1e-12);
+  double mass = 0.0;
+  for (Real m : p.particles.m) mass += m;
+  EXPECT_NEAR(mass / (p.box.length(0) * p.box.length(1) * p.box.length(2)), 1.0,
+              1e-10);  // summed over 179,800 particles
+}
+
 TEST(SphDustDiffuse, ConvergenceCubicLattices) {
   const double t_end = 0.1;
   g_hfact = 1.5;

@@ -61,7 +61,7 @@ DustProblem dustyshock(const DustyShock& s, SphConfig cfg, const DustSettings& d
 
 /// PL15 sec. 4.3: rho = 1 in [-0.5, 0.5]^3 periodic, isothermal (cfg.cs_iso),
 /// eps(r, 0) of eq. 52 split equally over the species; cubic lattice of n^3
-/// particles or the close-packed lattice of spacing 1 / n (n = 50: 50 x 58 x 60).
+/// particles or the close-packed lattice of spacing 1 / n (n = 50: 50 x 58 x 62).
 struct DustyDiffuse {
   int n = 16;
   bool close_packed = false;
