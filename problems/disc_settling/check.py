@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check a disc_settling run (VALIDATION C2, C3, C6; RBO24 sec. 3.6, Fig. 7-8).
 
-    check.py RUN_DIR [--drift] [--plot FILE.png] [--zmax 3] [--tol 0.05] [--cut 1e-10]
+    check.py RUN_DIR [--drift] [--plot FILE.png] [--zmax 3] [--tol 0.05] [--cut 1e-4]
 
 Settling (default, C2), from the last snapshot, computed here independently of
 the C++ code for every radial column: H = c_s / Omega_K(R) at the mid-plane,

@@ -86,9 +86,12 @@ def listing(disc_out):
     for name, target in (("snapshot_99999.h5", last), ("snapshot_100000.h5", first), ("snapshot_00007.h5", last)):
         os.symlink(os.path.abspath(target), os.path.join(odd, name))
     open(os.path.join(odd, "snapshot_00008.h5.tmp"), "w").close()
+    os.makedirs(os.path.join(odd, "superseded_00001"))
+    os.symlink(os.path.abspath(first), os.path.join(odd, "superseded_00001", "snapshot_00009.h5"))
     names = [os.path.basename(f) for f in mote.list_snapshots(odd)]
     checks.check(names == ["snapshot_00007.h5", "snapshot_99999.h5", "snapshot_100000.h5"],
-                 f"snapshots listed by number in a directory named with glob characters: {names}")
+                 f"snapshots listed by number in a directory named with glob characters, without the temporary "
+                 f"and superseded_00001/: {names}")
     checks.check(mote.last_snapshot(odd).time == mote.read_snapshot(first).time, "last_snapshot: snapshot_100000")
 
 
