@@ -3,6 +3,7 @@
 
     check.py RUN_DIR [--plot DIR] [--steady-tol 0.1] [--shape-tol 0.05] [--trap-cells 2]
              [--frag-factor 2] [--drift-slope-tol 0.2] [--settle-tol 0.3] [--radius 6] [--mass-tol 1e-10]
+             [--t-min 1e6]
              [--iso-T-ref 159.1] [--cool-from 6] [--against OTHER_RUN [--against-tol 0.05] [--against-T-tol 0.005]]
 
 Everything is computed here from the snapshots and the history, independently
@@ -13,12 +14,14 @@ holds the upper one). For species s of size a_s:
 (the mass-grid independent density: m d(rho)/dm integrated over Z).
 
 Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
+  * end time: the last snapshot at or after --t-min (yr; 1e6, RBO24's steady
+    state), so that the rows below judge a run that got there;
   * steady state: the mass-weighted change of sigma_d(m, R) between the last
-    two snapshots, per dex of time, sum |d sigma| / sum sigma / dlog10 t
-    <= --steady-tol (needs two snapshots after 1e5 yr to be meaningful);
+    two snapshots, per dex of time, sum |d sigma| R dR / sum sigma R dR / dlog10 t
+    (each cell's dust mass is sigma_d dln m 2 pi R dR) <= --steady-tol;
   * steady size distribution: the same between the distributions of each
-    column, sigma_d(m, R) / Sigma_d(R), weighted by Sigma_d(R) (mass-weighted L1
-    distance per dex of time) <= --shape-tol. The first row also counts the dust
+    column, sigma_d(m, R) / Sigma_d(R), weighted by the column's dust mass
+    Sigma_d(R) R dR (mass-weighted L1 distance per dex of time) <= --shape-tol. The first row also counts the dust
     that drifts into the trap from the outer disc, whose mass-weighted drift
     time is about 1 Myr (README), this one only the shape the growth,
     fragmentation, settling and drift give each column;
@@ -41,13 +44,15 @@ Checks (PASS / FAIL with the measured value; the last snapshot unless stated):
     and, independent of f_d's calibration, the radial shape: where
     a_drift < a_frag / 2 the least-squares slope d ln(peak) / d ln R lies
     within --drift-slope-tol (relative) of a_drift's, which differs from
-    a_frag's (R^-0.5 here) by a factor of about 5;
+    a_frag's (R^-0.5 here) by a factor of about 5 (a disc with no cell beyond
+    the trap where a_drift < a_frag fails the drift row: nothing to judge);
   * settling: at --radius (au; 6, or 10 for v_frag >= 1000 cm/s, where RBO24
     sec. 7.2 find the trap's small grains swept up near the mid-plane, which
     is reported as INFO with Krijt & Ciesla's alpha < Sigma_d / Sigma_g) for three sizes (about 0.5, 50 and 150 um, or the
     largest grown size), the dust scale height sqrt(<Z^2>) of the column agrees
     with h_g (alpha / (alpha + St))^1/2 (h_g = c_s / Omega_K, St = t_s Omega_K
-    at the mid-plane, Takeuchi & Lin 2002) within --settle-tol; reported: the
+    at the mid-plane, Takeuchi & Lin 2002) within --settle-tol (three distinct
+    sizes needed: fewer fail); reported: the
     intermediate-size enhancement of RBO24 sec. 7.1, the 10-100 um grains'
     rho(h_g) / rho(0) over Takeuchi & Lin's, and the species whose density at
     one gas scale height exceeds its mid-plane value;
@@ -126,6 +131,10 @@ class Disc:
         self.h_g = np.sqrt(self.cs2[:, 0]) / self.Omega
         self.radiation = deck.get("radiation")
 
+    def annulus(self):
+        """R dR of each column: its dust mass is 2 pi Sigma_d R dR."""
+        return self.R * np.diff(self.R_nodes[:, 0])
+
     def pressure_mid(self):
         return self.rho_g[:, 0] * self.cs2[:, 0]
 
@@ -147,6 +156,11 @@ class Disc:
         return int(np.argmin(np.abs(self.R / 1.495978707e13 - radius_au)))
 
 
+def check_end_time(v, d, t_min):
+    v.check(d.time_yr >= t_min * (1 - 1e-4),  # year conventions differ by 2e-5
+            f"end time: the last snapshot at {d.time_yr:.4g} yr (>= {t_min:g} yr, for the rows below)")
+
+
 def check_steady(v, discs, tol):
     if len(discs) < 2:
         v.check(False, "steady state: needs two snapshots")
@@ -156,10 +170,11 @@ def check_steady(v, discs, tol):
         v.check(False, "steady state: needs two snapshots after t = 0")
         return
     dex = np.log10(new.time_yr / old.time_yr)
-    change = np.sum(np.abs(new.sigma_m - old.sigma_m)) / np.sum(new.sigma_m) / dex
+    area = new.annulus()
+    change = np.sum(np.abs(new.sigma_m - old.sigma_m) * area) / np.sum(new.sigma_m * area) / dex
     v.check(change <= tol,
             f"steady state: sigma_d(m, R) changed by {change:.3g} per dex of time between "
-            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (mass-weighted) <= {tol:g}")
+            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (mass-weighted: weight R dR) <= {tol:g}")
 
 
 def check_shape(v, discs, tol):
@@ -168,12 +183,12 @@ def check_shape(v, discs, tol):
         return
     old, new = discs[-2], discs[-1]
     dex = np.log10(new.time_yr / old.time_yr)
-    column = new.sigma_m.sum(axis=0)
+    column = new.sigma_m.sum(axis=0) * new.annulus()
     shape = lambda d: d.sigma_m / np.maximum(d.sigma_m.sum(axis=0), 1e-300)[None, :]
     change = np.sum(column * np.abs(shape(new) - shape(old)).sum(axis=0)) / column.sum() / dex
     v.check(change <= tol,
             f"steady size distribution: sigma_d(m, R) / Sigma_d(R) changed by {change:.3g} per dex of time between "
-            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (Sigma_d-weighted L1) <= {tol:g}")
+            f"{old.time_yr:.4g} and {new.time_yr:.4g} yr (L1 weighted by the column's dust mass) <= {tol:g}")
 
 
 def report_drift(v, snap, d, radii=(8.0, 12.0, 16.0)):
@@ -227,7 +242,7 @@ def check_growth_limits(v, d, factor, slope_tol):
         outer = np.arange(trap.max() + 1, len(d.R))  # beyond the trap (inside it lies the cavity)
         outside = outer[ad[outer] < af[outer]]
         if len(outside) == 0:
-            v.info("drift limit: no cell beyond the trap with a_drift < a_frag")
+            v.check(False, "drift limit: no cell beyond the trap with a_drift < a_frag: no drift-limited growth to judge")
             return
         r = peak[outside] / np.minimum(af, ad)[outside]
         v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
@@ -267,7 +282,11 @@ def scale_heights(d, i, s):
 
 def check_settling(v, d, radius, tol):
     i = d.column(radius)
-    for s in settling_species(d, i):
+    species = settling_species(d, i)
+    if len(species) < 3:
+        v.check(False, f"settling at {d.R[i] / AU:.2f} au: {len(species)} distinct sizes up to the grown peak "
+                       f"({d.a[np.argmax(d.sigma_m[:, i])] * 1e4:.3g} um), three needed")
+    for s in species:
         h_d, h_ref, St = scale_heights(d, i, s)
         e = abs(h_d / h_ref - 1)
         v.check(e <= tol,
@@ -347,7 +366,7 @@ def check_mass(v, run_dir, tol):
 def distances(d, o):
     """Mass-weighted L1 distances of disc d from disc o (same grid): of sigma_d(m, R),
     weight the annulus area R dR, and of the dust of every cell and species, R dR dZ."""
-    area = d.R * np.diff(d.R_nodes[:, 0])
+    area = d.annulus()
     sigma = np.sum(np.abs(d.sigma_m - o.sigma_m) * area) / np.sum(o.sigma_m * area)
     dV = area[None, :, None] * d.dZ[None]
     return sigma, np.sum(np.abs(d.rho - o.rho) * dV) / np.sum(o.rho * dV)
@@ -498,6 +517,8 @@ def main():
                    help="au, for Fig. 14, 16, 17 and the settling check (default 6; 10 for v_frag >= 1000 cm/s, "
                         "away from the trap, where RBO24 Fig. 20 find Takeuchi & Lin's profiles)")
     p.add_argument("--mass-tol", type=float, default=1e-10)
+    p.add_argument("--t-min", type=float, default=1e6,
+                   help="yr: the last snapshot must be at least this late (RBO24's steady state at 1 Myr)")
     p.add_argument("--iso-T-ref", type=float, default=159.1000339385544,
                    help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
     p.add_argument("--cool-from", type=float, default=6.0,
@@ -518,6 +539,7 @@ def main():
     print(f"{args.run_dir}: last snapshot at t = {d.time_yr:.4g} yr, {len(d.R)} x {d.Z.shape[1]} cells, "
           f"{len(d.a)} species")
     v = Verdict()
+    check_end_time(v, d, args.t_min)
     check_steady(v, discs, args.steady_tol)
     check_shape(v, discs, args.shape_tol)
     report_drift(v, snaps[-1], d)

@@ -14,7 +14,10 @@ peak is put at a chosen size a_peak(R); each species' vertical profile is a
 Gaussian of a chosen scale height. Checks:
   * steady state: sigma_d(m, R) scaled by 1 + eps between 1e5 and 3e5 yr gives
     eps / (1 + eps) / log10 3 (to 1e-3: the row prints 3 digits); PASS at 0.05,
-    FAIL at 0.48 (tol 0.1);
+    FAIL at 0.48 (tol 0.1); scaled beyond 10 au only, the fraction of the dust
+    mass that changed (cells' annuli pi (R_out^2 - R_in^2)) per dex, to 1 %,
+    which an unweighted sum over the cells misses by more than 10 %;
+  * end time: a last snapshot at 3e5 yr fails --t-min 1e6, passes 1e5;
   * steady size distribution: 0 (to 1e-12) for a pure scaling (PASS), FAIL when every
     column's peak moves by a factor 2 (tol 0.05);
   * dust trap: PASS at the pressure maximum, FAIL 3 cells outward (2 cells);
@@ -26,8 +29,9 @@ Gaussian of a chosen scale height. Checks:
     cavity's term in dln P / dln R, -2.03 at 6.5 au, -2.75 far out);
     a_peak = a_frag beyond the trap fails both; a_peak = a_drift (R / R_0)^(0.3 s)
     (s a_drift's slope, 0.5 at R_0 so within the factor 2) fails the shape row only;
+    a disc with a_drift above a_frag everywhere fails the drift row (nothing to judge);
   * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
-    1.5 x that fails them (tol 0.3);
+    1.5 x that fails them (tol 0.3); grains grown only to 1 um leave two sizes: FAIL;
   * --against: a run on the same grid whose dust differs by 0.2 % passes at
     1 % with both distances 0.002/1.002 (to 0.5 %: the row prints 3 digits),
     by 5 % fails; a run whose theta nodes or grain sizes differ by 1e-9 is
@@ -137,8 +141,8 @@ def number_after(text, key):
 
 def steady_rows(checks):
     for eps, expect in ((0.05 * np.log10(3.0) / (1 - 0.05 * np.log10(3.0)), "PASS"), (0.3, "FAIL")):
-        old = disc(100.0, lambda d: d.a_frag())
-        new = disc(100.0, lambda d: d.a_frag())
+        old = with_nodes(disc(100.0, lambda d: d.a_frag()))
+        new = with_nodes(disc(100.0, lambda d: d.a_frag()))
         old.time_yr, new.sigma_m = 1e5, old.sigma_m * (1 + eps)
         v = Rows()
         check.check_steady(v, [old, new], 0.1)
@@ -150,14 +154,38 @@ def steady_rows(checks):
                      f"{expect} at tol 0.1")
         checks.check(v.verdicts("steady size") == ["PASS"] and number_after(v.rows[1][1], "changed by") < 1e-12,
                      "steady size distribution: a pure scaling changes it by 0, PASS")
-    old = disc(100.0, lambda d: d.a_frag())
-    new = disc(100.0, lambda d: 2.0 * d.a_frag())
+    outer_rows(checks)
+    old = with_nodes(disc(100.0, lambda d: d.a_frag()))
+    new = with_nodes(disc(100.0, lambda d: 2.0 * d.a_frag()))
     old.time_yr = 1e5
     v = Rows()
     check.check_shape(v, [old, new], 0.05)
     checks.check(v.verdicts("steady size") == ["FAIL"],
                  f"steady size distribution: every peak moved by a factor 2 gives "
                  f"{number_after(v.rows[0][1], 'changed by'):.3g} per dex, FAIL at tol 0.05")
+
+
+def outer_rows(checks):
+    """The steady row weighs each cell by its dust mass: 20 % more dust beyond 10 au."""
+    old = with_nodes(disc(100.0, lambda d: d.a_frag()))
+    new = with_nodes(disc(100.0, lambda d: d.a_frag()))
+    old.time_yr = 1e5
+    outer = new.R > 10.0 * AU
+    new.sigma_m = np.where(outer[None, :], 1.2, 1.0) * old.sigma_m
+    v = Rows()
+    check.check_steady(v, [old, new], 0.1)
+    got = number_after(v.rows[0][1], "changed by")
+    edges = new.R_nodes[:, 0]
+    mass = old.Sigma_s.sum(axis=0) * np.pi * (edges[1:] ** 2 - edges[:-1] ** 2)  # each column's dust mass
+    want = 0.2 * mass[outer].sum() / (mass.sum() + 0.2 * mass[outer].sum()) / np.log10(3.0)
+    cells = 0.2 * old.sigma_m[:, outer].sum() / new.sigma_m.sum() / np.log10(3.0)
+    checks.check(abs(got / want - 1) < 0.01 and abs(cells / want - 1) > 0.1,
+                 f"steady state: 20 % more dust beyond 10 au gives {got:.4g} per dex, the changed fraction of the dust "
+                 f"mass {want:.4g} (unweighted over the cells: {cells:.4g})")
+    for t_min, expect in ((1e6, "FAIL"), (1e5, "PASS")):
+        v = Rows()
+        check.check_end_time(v, new, t_min)
+        checks.check(v.verdicts("end time") == [expect], f"end time 3e5 yr against --t-min {t_min:g}: {expect}")
 
 
 def trap_rows(checks):
@@ -198,6 +226,11 @@ def drift_rows(checks):
             ok = ok and abs(s_peak / s_drift - 1) < 0.02 and -1.77 <= s_drift <= -1.5
         checks.check(ok, f"drift rows, peak at {name}: drift limit {limit[0]}, shape {shape[0]} "
                          f"(peak R^{s_peak:.3g}, a_drift R^{s_drift:.3g})")
+    d = disc(1000.0, lambda d: d.a_frag())
+    d.a_drift = lambda: 10.0 * d.a_frag()
+    v = Rows()
+    check.check_growth_limits(v, d, 2.0, 0.2)
+    checks.check(v.verdicts("drift limit") == ["FAIL"], "drift row with a_drift > a_frag everywhere: FAIL")
 
 
 def settling_rows(checks):
@@ -209,6 +242,10 @@ def settling_rows(checks):
         ok = v.verdicts("settling") == [expect] * 3 and (scale != 1.0 or max(errors) < 0.01)
         checks.check(ok, f"settling, h_d = {scale:g} x Takeuchi & Lin's at 3 sizes: {expect}, "
                          f"relative errors {', '.join(f'{e:.3g}' for e in errors)}")
+    v = Rows()
+    check.check_settling(v, disc(100.0, lambda d: np.full(len(d.R), 1e-4)), 6.0, 0.3)
+    checks.check(v.verdicts("settling") == ["FAIL", "PASS", "PASS"],
+                 f"settling with grains grown to 1 um: two sizes, the row FAIL ({v.verdicts('settling')})")
 
 
 def temperature_rows(checks):
