@@ -7,6 +7,9 @@ usage: viscous_ring_convergence.py EXE WORKDIR N1 N2 N3 ...
    space; dt ~ dR^2), finest error <= 1e-4.
 2. Closed boundaries (nr = N1): total mass conserved to 1e-12, Sigma > 0.
 3. Zero-torque boundaries at the explicit limit (gas.cfl = 1): Sigma > 0.
+Both run with gas.Sigma_floor = 0, so a cell the update drove to or below zero
+is clamped to 0 and fails the Sigma > 0 check (the default floor, 1e-100,
+would hide it).
 """
 import os
 import shutil
@@ -38,7 +41,7 @@ checks.check(errors[-1] <= 1e-4, f"LBP self-similar: finest L1 {errors[-1]:.3e} 
 for bc, extra in (("closed", []), ("zero_torque", ["gas.cfl=1.0"])):
     d = os.path.join(work, bc)
     run([exe, deck, f"grid.nr={sizes[0]}", f"gas.inner_boundary={bc}", f"gas.outer_boundary={bc}", f"output.dir={d}",
-         "output.history_every=1", *extra])
+         "output.history_every=1", "gas.Sigma_floor=0", *extra])
     h = mote.read_history(os.path.join(d, "history.txt"))
     dm = abs(h["gas_mass"][-1] / h["gas_mass"][0] - 1)
     print(f"{bc}: |dM/M| = {dm:.3e} over {h['step'][-1]} steps, min Sigma = {h['Sigma_min'].min():.3e}")
