@@ -487,9 +487,13 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
         // this bound stops round-off in near-empty cells from creating huge
         // velocities there (which would collapse the time-step). The source-stage
         // velocities of the full step already hold the half step's sources, which
-        // the momenta carried from t^n do not: the range is widened by that kick,
-        // source_lead |a|, or dust at rest would be lifted to dt a / 2 before the
-        // step's dt a is added (1.5 dt a per step for decoupled dust).
+        // the momenta carried from t^n do not: the range holds each neighbour's
+        // velocity before the half step's drag (backward Euler inverted, eq. 13
+        // over source_lead) and is widened by the half step's kick, source_lead |a|.
+        // Without them, dust at rest would be lifted to dt a / 2 before the step's
+        // dt a is added (1.5 dt a per step for decoupled dust), and drifting dust
+        // pulled to its half-step velocity before the step's drag (a decay factor
+        // ts / (dt / 2 + ts) too many per step).
         const Real f = dust_floor(floor, floor_ratio, rho_g(i, j));
         const Real rho = math::max(q[kRho], f);
         Real vR, vphi, vZ;
@@ -498,9 +502,12 @@ void DustDynamics::advance_stage(const View4& w_source, double dt_stage, double 
           for (int a = i - 1; a <= i + 1; ++a)
             for (int c = j - 1; c <= j + 1; ++c) {
               const Real v3[3] = {w_source(a, c, s, kVR), w_source(a, c, s, kVphi) * Rc(a), w_source(a, c, s, kVZ)};
+              const Real g3[3] = {vgR(a, c), vgphi(a, c) * Rc(a), vgZ(a, c)};
+              const Real undo = drag ? lead / stopping_time(a, c, s) : 0;
               for (int k = 0; k < 3; ++k) {
-                lo[k] = math::min(lo[k], v3[k]);
-                hi[k] = math::max(hi[k], v3[k]);
+                const Real before_drag = v3[k] + undo * (v3[k] - g3[k]);
+                lo[k] = math::min(lo[k], math::min(v3[k], before_drag));
+                hi[k] = math::max(hi[k], math::max(v3[k], before_drag));
               }
             }
           const Real kick[3] = {lead * math::fabs(aR), 0, lead * math::fabs(aZ)};

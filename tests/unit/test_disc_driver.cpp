@@ -314,6 +314,50 @@ TEST(DiscDriver, DustAtRestFallsWithItsAccelerationInOneStep) {
   EXPECT_LT(worst, 1e-3);
 }
 
+TEST(DiscDriver, DragRelaxesADriftOnceAStep) {
+  // Dust drifting at a uniform u relative to gas at rest (no gravity, no diffusion):
+  // one step of RBO24 sec. 3.1 takes v_R to u t_s / (dt + t_s) (step viii; first
+  // order in dt / t_s against e^-dt/t_s), to the transport's change of q / rho in a
+  // step of Courant number 1e-3 (1.3e-5).
+  // The bound on transported velocities must hold the neighbours' velocities before
+  // the half step's drag: bounded by the half-step velocities alone, the step
+  // applied a factor t_s / (dt / 2 + t_s) too many (v_R = u / 3 at dt = t_s).
+  const auto deck = make_deck({"driver.evolve_gas=false", "gas.radial_velocity=\"zero\"", "dust.gravity=false",
+                               "dust.diffusion=false", "dust.sizes=[1e-3, 1e-2, 1e-1]"});
+  disc::DiscSimulation sim(deck, core::Comm::world(), units::unit_system_by_name("au_msun"),
+                           disc::DiscSimulation::well_mixed({0.01, 0.01, 0.01}, 1e-40));
+  const auto& g = sim.grid();
+  auto& dust = sim.dust();
+  auto ts = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dust.stopping_times());
+  // The step: the middle species' stopping time in the middle cell (no step limit binds).
+  const double dt = ts((g.i_begin() + g.i_end()) / 2, (g.j_begin() + g.j_end()) / 2, 1);
+  const double u = 1e-3 * (g.Re_h(g.i_begin() + 1) - g.Re_h(g.i_begin())) / dt;
+  ASSERT_LT(dt, sim.max_dt());
+  auto W = Kokkos::create_mirror(Kokkos::HostSpace(), dust.W);
+  Kokkos::deep_copy(W, dust.W);
+  auto vgR = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sim.gas().fields().vR);
+  for (int i = g.i_begin(); i < g.i_end(); ++i)
+    for (int j = g.j_begin(); j < g.j_end(); ++j)
+      for (int s = 0; s < dust.species(); ++s) W(i, j, s, disc::kVR) = vgR(i, j) + u;
+  Kokkos::deep_copy(dust.W, W);
+  dust.initialise_from_primitives();
+  dust.step(dt);
+  Kokkos::deep_copy(W, dust.W);
+  double worst = 0;
+  int cells = 0;  // interior cells with 0.1 dt <= t_s <= 10 dt, where the factor tells
+  for (int i = g.i_begin() + 2; i < g.i_end() - 2; ++i)
+    for (int j = g.j_begin() + 2; j < g.j_end() - 2; ++j)
+      for (int s = 0; s < dust.species(); ++s) {
+        if (ts(i, j, s) < 0.1 * dt || ts(i, j, s) > 10 * dt) continue;
+        const double expected = u * ts(i, j, s) / (dt + ts(i, j, s));
+        worst = std::max(worst, std::fabs((W(i, j, s, disc::kVR) - vgR(i, j)) / expected - 1.0));
+        ++cells;
+      }
+  std::printf("drag over one step in %d cells with 0.1 <= t_s / dt <= 10: worst relative error %.3e\n", cells, worst);
+  ASSERT_GT(cells, 20);
+  EXPECT_LT(worst, 1e-4);
+}
+
 /// Height at time t of a test particle released at rest from Z0 in the column at R:
 /// Z'' = -GM Z / (R^2 + Z^2)^{3/2} (RK4, 200 steps), and its velocity.
 void free_fall(double GM, double R, double Z0, double t, double* Z, double* V) {

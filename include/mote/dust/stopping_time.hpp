@@ -20,7 +20,9 @@ KOKKOS_INLINE_FUNCTION Real epstein_stopping_time(Real rho_grain, Real size, Rea
 KOKKOS_INLINE_FUNCTION Real stokes_number(Real stopping_time, Real omega) { return stopping_time * omega; }
 
 /// Velocity after an implicit (backward Euler) drag update of length dt towards
-/// the gas velocity (RBO24 sec. 3.1 steps iv and viii): exact for linear drag.
+/// the gas velocity (RBO24 eq. 13, sec. 3.1 steps iv and viii): the exact solution
+/// of the linear implicit system, first order in dt / t_s against the exact decay
+/// (0.5 against e^-1 at dt = t_s).
 KOKKOS_INLINE_FUNCTION Real implicit_drag(Real v, Real v_gas, Real dt, Real stopping_time) {
   return v - dt / (dt + stopping_time) * (v - v_gas);
 }
