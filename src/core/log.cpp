@@ -82,6 +82,7 @@ std::string format(const char* fmt, ...) {
 
 std::string hms(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
+  if (seconds >= 3.6e9) return ">1e6 h";  // a million hours: beyond it the count would only mislead (or overflow)
   const long long s = static_cast<long long>(seconds + 0.5);
   return format("%02lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
 }

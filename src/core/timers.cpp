@@ -32,6 +32,10 @@ std::string Timers::summary(double wall_seconds) const {
   return out;
 }
 
+double Timers::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - made_).count();
+}
+
 ScopedTimer::ScopedTimer(Timers& timers, std::string name)
     : timers_(timers), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
 

@@ -97,6 +97,27 @@ void check_snapshot_times(const core::Deck& d, core::DeckCheck& check) {
     }
 }
 
+/// The snapshot cadence does not force steps below run.dt_min: steps are cut to land on
+/// each output time, so a finer cadence would stall the run at dt < dt_min with a
+/// plausible ETA, which is what run.dt_min exists to stop.
+void check_output_cadence(const core::Deck& d, core::DeckCheck& check) {
+  const double dt_min = d.real("run.dt_min") > 0.0 ? d.real("run.dt_min") : kDefaultDtMinFraction * d.real("run.t_end");
+  const double every = d.real("output.snapshot_dt");
+  if (every > 0.0 && every < dt_min)
+    check.fail("output.snapshot_dt",
+               logging::format("= %g is below the smallest allowed time-step, run.dt_min = %g", every, dt_min));
+  const auto& times = d.real_array("output.snapshot_times");
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const double gap = times[k] - (k == 0 ? 0.0 : times[k - 1]);
+    if (gap > 0.0 && gap < dt_min) {
+      check.fail(
+          "output.snapshot_times",
+          logging::format("element %zu is %g after the one before (or t = 0), below run.dt_min = %g", k, gap, dt_min));
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 void RunSettings::declare(core::DeckSchema& schema) {
@@ -161,6 +182,7 @@ void RunSettings::declare(core::DeckSchema& schema) {
           "Times of the snapshots after the initial one, increasing (e.g. logarithmic in time); the final snapshot "
           "at run.t_end is always written. Excludes output.snapshot_dt.");
   schema.rule(check_snapshot_times);
+  schema.rule(check_output_cadence);
   schema.rule(check_output_dir);
   schema.integer("output.checkpoint_every")
       .restart_mutable()
@@ -317,9 +339,18 @@ void write_text_on_root(const std::string& path, const std::string& text, const 
   throw core::PeerIOError("rank 0 could not write '" + path + "'");
 }
 
+/// dir/superseded_<restored>, or superseded_<restored>.2, .3, ... where that exists (a second
+/// restart from the same checkpoint, or a directory an earlier run left): never an existing one.
+std::filesystem::path unused_aside_directory(const std::string& dir, long long restored) {
+  const std::filesystem::path base = std::filesystem::path(dir) / logging::format("superseded_%05lld", restored);
+  std::filesystem::path aside = base;
+  for (int n = 2; std::filesystem::exists(aside); ++n) aside = base.string() + "." + std::to_string(n);
+  return aside;
+}
+
 /// Moves the checkpoints numbered after `restored` and the snapshot files
-/// numbered from `first_snapshot` on, with a copy of history.txt, into
-/// dir/superseded_<restored>; says what moved (empty where nothing did).
+/// numbered from `first_snapshot` on, with a copy of history.txt, into a new
+/// directory dir/superseded_<restored>[.n]; says what moved (empty where nothing did).
 std::string move_later_outputs(const std::string& dir, long long restored, long long first_snapshot) {
   namespace fs = std::filesystem;
   std::vector<std::string> later;
@@ -329,11 +360,11 @@ std::string move_later_outputs(const std::string& dir, long long restored, long 
     for (const auto& f : numbered_files(dir, "snapshot", ext))
       if (index_of(f) >= first_snapshot) later.push_back(f);
   if (later.empty()) return "";
-  const fs::path aside = fs::path(dir) / logging::format("superseded_%05lld", restored);
+  const fs::path aside = unused_aside_directory(dir, restored);
   fs::create_directories(aside);
   for (const auto& f : later) fs::rename(f, aside / fs::path(f).filename());
   const fs::path history = fs::path(dir) / "history.txt";
-  if (fs::exists(history)) fs::copy_file(history, aside / "history.txt", fs::copy_options::overwrite_existing);
+  if (fs::exists(history)) fs::copy_file(history, aside / "history.txt");
   return logging::cat(later.size(), " files numbered after it (checkpoints and snapshots of the continuation it had) ",
                       "and a copy of history.txt moved to ", aside.string());
 }
@@ -453,7 +484,9 @@ RestartSource RunLoop::read_checkpoint(Simulation& sim, State& s, const std::str
     source.run_id = restore_checkpoint(sim, s, path);
   } catch (const core::InputError&) {
     throw;
-  } catch (const std::exception& e) {
+  } catch (const std::runtime_error& e) {
+    // The checkpoint's own failures (HDF5 reads agreed by every rank, missing or misshapen data) are bad input;
+    // anything else (memory exhausted, a defect) may be one rank's alone and goes on as it is (exit 1, MPI_Abort).
     throw core::InputError("cannot restart from checkpoint '" + path + "': " + e.what());
   }
   last_checkpoint_ = path;
@@ -502,8 +535,10 @@ bool RunLoop::time_step_usable(const Simulation& sim, const State& s, double dt)
   const bool usable = dt > 0.0 && dt >= settings_.dt_min && std::isfinite(dt);
   if (!usable) {
     const std::string limit = sim.dt_limit().empty() ? "" : ", limited by the " + sim.dt_limit() + ",";
-    logging::error(logging::format("time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time), limit,
-                   logging::format(" is below run.dt_min = %g; stopping", settings_.dt_min));
+    const std::string why = !std::isfinite(dt)
+                                ? std::string(" is not finite; stopping")
+                                : logging::format(" is below run.dt_min = %g; stopping", settings_.dt_min);
+    logging::error(logging::format("time-step dt = %g at step %lld (t = %.10g)", dt, s.step, s.time), limit, why);
   }
   return usable;
 }
@@ -608,15 +643,17 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   }
   bool snapshot_current = !restarting;
   if (restarting) snapshot_current = write_pending_output(sim, s, history);
+  long long checkpointed_step = restarting ? s.step : -1;  // the step whose state the newest checkpoint holds
   double last_progress = wall_now(), last_checkpoint = wall_now();
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
     if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
       // The checkpoint before any log line: a log write that blocks cannot cost it.
       if (report_non_finite(sim, s)) return core::kExitNonFinite;
-      write_checkpoint(sim, s);
-      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step,
-                    "; stopped after writing the checkpoint above");
+      const bool written_before = checkpointed_step == s.step;  // by the step the signal followed
+      if (!written_before) write_checkpoint(sim, s);
+      logging::info("received ", sig == SIGINT ? "SIGINT" : "SIGTERM", " at step ", s.step, "; stopped after ",
+                    written_before ? "that step's checkpoint, " + last_checkpoint_ : "writing the checkpoint above");
       log_work_summary(sim);
       return core::kExitInterrupted;
     }
@@ -656,6 +693,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
     }
     if (checkpoint_due) {
       write_checkpoint(sim, s);
+      checkpointed_step = s.step;
       last_checkpoint = wall_now();
     }
     // Decided together: a simulation's dt_limit() may need every rank.
@@ -670,7 +708,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
     s.snapshot_pending = true;
     write_pending_snapshot(sim, s);
   }
-  write_checkpoint(sim, s);
+  if (checkpointed_step != s.step) write_checkpoint(sim, s);  // a checkpoint due on the last step is not written twice
   progress(sim, s, start_time, wall_now() - wall_start, s.step - start_step);
   const double wall = wall_now() - wall_start;
   logging::info(finished ? "finished" : "stopped at run.max_steps",
@@ -678,7 +716,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
                                 (s.step - start_step) / std::max(wall, 1e-30)));
   if (finished) sim.finish(s.time);
   log_work_summary(sim);
-  logging::info("timers:\n", timers_.summary(wall));
+  logging::info("timers: (percentages of the time since set-up began)\n", timers_.summary(timers_.elapsed()));
   return finished ? core::kExitFinished : core::kExitStepLimit;
 }
 

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,7 +17,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
+#include <new>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -47,6 +50,7 @@ double clock_seconds() {
 class Decay final : public io::Simulation {
  public:
   long long poison_step = -1;  // this step produces a NaN
+  bool load_fails = false;     // load_state runs out of memory
   long long signal_step = -1;  // this step raises SIGTERM
   double y = 1.0;
   long long steps = 0;
@@ -77,6 +81,7 @@ class Decay final : public io::Simulation {
     f.write("/state/steps", io::Block::whole({1}), &s);
   }
   void load_state(const io::H5File& f) override {
+    if (load_fails) throw std::bad_alloc();
     f.read("/state/y", io::Block::whole({1}), &y);
     std::int64_t s = 0;
     f.read("/state/steps", io::Block::whole({1}), &s);
@@ -107,6 +112,12 @@ class RunLoopTest : public ::testing::Test {
     core::Timers timers;
     io::RunLoop loop(io::RunSettings::from_deck(deck), "decay", deck, units::UnitSystem{}, core::Comm::world(), timers);
     return loop.run(sim, restart);
+  }
+
+  /// The step attribute of the checkpoint at `path`.
+  static long long checkpoint_step(const fs::path& path) {
+    io::H5File f(path.string(), io::H5File::Mode::Read, core::Comm::world());
+    return f.read_attribute_int("/", "step");
   }
 
   double snapshot_time(int i) const {
@@ -272,17 +283,18 @@ TEST_F(RunLoopTest, ARestartWithAMuchFinerCadenceFindsItsNextOutputAtOnce) {
   const auto checkpoint = finished_run_checkpoint({"run.t_end=1.0"});
   Decay resumed;
   const double cadence = std::ldexp(1.0, -40);
-  ASSERT_EQ(
-      run(resumed, {"run.t_end=" + format_real(1.0 + 3.0 * cadence), "output.snapshot_dt=" + format_real(cadence)},
-          checkpoint),
-      core::kExitFinished);
+  ASSERT_EQ(run(resumed,
+                {"run.t_end=" + format_real(1.0 + 3.0 * cadence), "output.snapshot_dt=" + format_real(cadence),
+                 "run.dt_min=1e-14"},
+                checkpoint),
+            core::kExitFinished);
   expect_snapshot_times({0.0, 0.25, 0.5, 0.75, 1.0, 1.0 + cadence, 1.0 + 2.0 * cadence, 1.0 + 3.0 * cadence});
 
   Decay refused;  // an index beyond 2^62 is refused before any step
   const auto last = io::latest_numbered(dir_, "checkpoint", "h5");
   ASSERT_TRUE(last);
   try {
-    run(refused, {"run.t_end=2.0", "output.snapshot_dt=1e-300"}, *last);
+    run(refused, {"run.t_end=2.0", "output.snapshot_dt=1e-300", "run.dt_min=1e-301"}, *last);
     ADD_FAILURE() << "a cadence of 1e-300 at t > 1 was accepted";
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("too fine"), std::string::npos) << e.what();
@@ -416,6 +428,75 @@ TEST_F(RunLoopTest, OldCheckpointsArePruned) {
   for (const auto& e : fs::directory_iterator(dir_))
     if (e.path().filename().string().rfind("checkpoint_", 0) == 0) ++count;
   EXPECT_EQ(count, 2);
+}
+
+// A checkpoint due on the step that ends the run is written once: written again, the
+// pruning deleted the previous distinct checkpoint and kept two of the last step.
+TEST_F(RunLoopTest, CheckpointDueOnTheLastStepIsWrittenOnce) {
+  Decay sim;
+  EXPECT_EQ(run(sim, {"output.checkpoint_every=9", "output.checkpoints_kept=2"}), core::kExitFinished);
+  ASSERT_EQ(sim.steps, 36);  // dt = 0.03 cut at the snapshot times 0.25, 0.5, 0.75, 1
+  EXPECT_EQ(sim.saved_at, (std::vector<long long>{9, 18, 27, 36}));
+  std::vector<long long> kept;
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (e.path().filename().string().rfind("checkpoint_", 0) == 0) kept.push_back(checkpoint_step(e.path()));
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<long long>{27, 36}));
+}
+
+// Restarting twice from the same checkpoint sets each abandoned continuation aside in a
+// directory of its own (the second went into the first's superseded_NNNNN and replaced
+// its files).
+TEST_F(RunLoopTest, EachAbandonedContinuationKeepsItsOwnDirectory) {
+  Decay first;
+  EXPECT_EQ(run(first, {"output.checkpoint_every=9", "output.checkpoints_kept=10"}), core::kExitFinished);
+  const std::string second = io::numbered_path(dir_, "checkpoint", 2, "h5");  // step 18
+  Decay again, once_more;
+  EXPECT_EQ(run(again, {"output.checkpoint_every=9", "output.checkpoints_kept=10", "run.max_steps=30"}, second),
+            core::kExitStepLimit);
+  EXPECT_EQ(run(once_more, {"output.checkpoint_every=9", "output.checkpoints_kept=10", "run.max_steps=20"}, second),
+            core::kExitStepLimit);
+  const fs::path aside = fs::path(dir_) / "superseded_00002", aside2 = fs::path(dir_) / "superseded_00002.2";
+  EXPECT_EQ(checkpoint_step(aside / "checkpoint_00003.h5"), 27);  // the first run's
+  EXPECT_EQ(checkpoint_step(aside / "checkpoint_00004.h5"), 36);
+  EXPECT_EQ(checkpoint_step(aside2 / "checkpoint_00003.h5"), 27);  // the first restart's
+  EXPECT_EQ(checkpoint_step(aside2 / "checkpoint_00004.h5"), 30);
+  EXPECT_EQ(checkpoint_step(io::numbered_path(dir_, "checkpoint", 3, "h5")), 20);  // the second restart's
+  EXPECT_TRUE(fs::exists(aside / "history.txt"));
+  EXPECT_TRUE(fs::exists(aside2 / "history.txt"));
+}
+
+// A failure in restoring the state that is not the checkpoint's (memory exhausted) is
+// not turned into bad input (exit 2 on that rank alone, the others left waiting): it
+// goes on as it is, to exit 1 and MPI_Abort.
+TEST_F(RunLoopTest, RestoreFailuresOtherThanTheCheckpointsAreNotBadInput) {
+  const std::string checkpoint = finished_run_checkpoint({});
+  Decay sim;
+  sim.load_fails = true;
+  EXPECT_THROW(run(sim, {"run.t_end=2"}, checkpoint), std::bad_alloc);
+}
+
+// A snapshot cadence finer than run.dt_min would cut every step below it: refused with the deck.
+TEST_F(RunLoopTest, SnapshotCadenceBelowTheSmallestStepIsRefused) {
+  Decay sim;
+  EXPECT_THROW(run(sim, {"output.snapshot_dt=1e-13"}), core::InputError);
+  EXPECT_THROW(run(sim, {"output.snapshot_dt=0.01", "run.dt_min=0.02"}), core::InputError);
+  EXPECT_THROW(run(sim, {"output.snapshot_dt=0", "output.snapshot_times=[0.5, 0.5000001]", "run.dt_min=1e-6"}),
+               core::InputError);
+  EXPECT_THROW(run(sim, {"output.snapshot_dt=0", "output.snapshot_times=[1e-13, 0.5]"}), core::InputError);
+  EXPECT_EQ(sim.steps, 0);
+  EXPECT_EQ(run(sim, {"output.snapshot_dt=0.02", "run.dt_min=0.02"}), core::kExitFinished);
+}
+
+TEST_F(RunLoopTest, NonFiniteTimeStepIsNamedSo) {
+  Decay sim;
+  sim.dt = std::numeric_limits<double>::infinity();
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(sim, {}), core::kExitNonFinite);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("time-step dt = inf at step 0 (t = 0), limited by the decay condition, is not finite"),
+            std::string::npos)
+      << err;
 }
 
 // Issue 22: a collapsing time-step stops the run (exit 3) instead of stalling.

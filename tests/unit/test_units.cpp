@@ -36,3 +36,10 @@ TEST(Units, DerivedUnits) {
   EXPECT_NEAR(cgs::a_rad, 7.5657e-15, 1e-18);
   EXPECT_THROW(unit_system_by_name("furlongs"), std::invalid_argument);
 }
+
+TEST(Units, HydrogenMassIsItsStandardAtomicWeight) {
+  // 1.00784 u (the lower bound of H's standard atomic weight, cuDisc's m_H), not the
+  // 1H atom's 1.00782503 u: the disc's c_s^2 = k_B T / (mu m_H) as cuDisc's.
+  EXPECT_NEAR(cgs::m_H / (1.00784 * 1.66053906660e-24), 1.0, 2e-7);  // 8 digits
+  EXPECT_NEAR(cgs::m_p / 1.67262192369e-24, 1.0, 1e-12);
+}

@@ -21,6 +21,7 @@
 #include "mote/coagulation/fragmentation.hpp"
 #include "mote/coagulation/relative_velocity.hpp"
 #include "mote/core/kokkos_types.hpp"
+#include "mote/core/units.hpp"
 
 namespace mote::coagulation {
 
@@ -76,10 +77,10 @@ struct GasCells {
 struct PhysicalKernel {
   RealView1 mass, size;  // grain masses and radii (MassGrid)
   GasCells gas;
-  Real rho_m = 1.6;                  // intrinsic grain density
-  Real mu_mH = 2.4 * 1.6735575e-24;  // mean molecular mass mu m_H
-  Real sigma_h2 = 2e-15;             // collision cross-section of H2 for the mean free path (cm^2)
-  Real v_frag = 100.0;               // fragmentation velocity
+  Real rho_m = 1.6;                    // intrinsic grain density
+  Real mu_mH = 2.4 * units::cgs::m_H;  // mean molecular mass mu m_H
+  Real sigma_h2 = 2e-15;               // collision cross-section of H2 for the mean free path (cm^2)
+  Real v_frag = 100.0;                 // fragmentation velocity
   bool vertically_integrated = false;
   bool fragmentation = true;
 

@@ -15,8 +15,11 @@ class Timers {
   double total(const std::string& name) const;
   /// Table of name, calls, total seconds, percent of `wall_seconds`.
   std::string summary(double wall_seconds) const;
+  /// Wall-clock seconds since these timers were made: the whole that every timed scope is part of.
+  double elapsed() const;
 
  private:
+  std::chrono::steady_clock::time_point made_ = std::chrono::steady_clock::now();
   struct Entry {
     double seconds = 0.0;
     long long calls = 0;
