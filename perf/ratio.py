@@ -24,9 +24,10 @@ bench over round i of limit) are written too, with their range, as the
 honest error bar. The JSON also holds every command, the benchmark names,
 the JSON context of each driver (mote_backend, mote_execution_space,
 mote_device, host, CPU count, library build type) and the load average
-before each run. Prints a one-line summary. Exit status 0, or 1 if a run
-failed or a filter or counter matched nothing usable, 2 if --max-ratio or
---min-ratio is given and the ratio lies outside it.
+before each run. Prints a one-line summary. Exit status 0; 1 if --max-ratio
+or --min-ratio is given and the ratio lies outside it (a FAIL line), or a run
+failed; 2 for bad input: arguments (inverted bounds among them), or a filter
+or counter that matches nothing usable.
 """
 import argparse
 import datetime
@@ -43,8 +44,11 @@ CONTEXT_KEYS = ("mote_backend", "mote_execution_space", "mote_device", "host_nam
                 "cpu_scaling_enabled", "library_build_type", "executable", "date")
 
 
+BAD_INPUT, FAILED = 2, 1  # exit statuses
+
+
 def run_once(exe, filt, counter, repetitions, extra, tmp, tag):
-    """One driver run; returns (record, error message or None)."""
+    """One driver run; returns (record, error message or None, exit status for the error)."""
     out = os.path.join(tmp, f"{tag}.json")
     cmd = [exe, f"--benchmark_repetitions={repetitions}", "--benchmark_report_aggregates_only=false",
            f"--benchmark_out={out}", "--benchmark_out_format=json", *extra]
@@ -56,24 +60,28 @@ def run_once(exe, filt, counter, repetitions, extra, tmp, tag):
     wall = (datetime.datetime.now(datetime.timezone.utc) - start).total_seconds()
     rec = {"command": shlex.join(cmd), "load_avg_before": load, "wall_s": wall, "returncode": p.returncode}
     if p.returncode != 0 or not os.path.exists(out):
-        return rec, f"{shlex.join(cmd)} exited {p.returncode}:\n{p.stderr[-2000:]}"
+        return rec, f"{shlex.join(cmd)} exited {p.returncode}:\n{p.stderr[-2000:]}", FAILED
     try:
         with open(out) as f:
             data = json.load(f)
     except json.JSONDecodeError:
-        return rec, f"{shlex.join(cmd)} wrote no benchmark JSON (does the filter match?):\n{(p.stdout + p.stderr)[-1000:]}"
+        return rec, f"{shlex.join(cmd)} wrote no benchmark JSON (does the filter match?):\n{(p.stdout + p.stderr)[-1000:]}", \
+            BAD_INPUT
     rec["context"] = {k: data["context"][k] for k in CONTEXT_KEYS if k in data["context"]}
     rec["context"]["load_avg"] = data["context"].get("load_avg")
     benches = data.get("benchmarks", [])
     names = sorted({b.get("run_name", b["name"]) for b in benches})
     if len(names) != 1:
-        return rec, f"{exe}: filter {filt!r} selects {len(names)} benchmarks ({', '.join(names) or 'none'}); need exactly one"
+        return rec, f"{exe}: filter {filt!r} selects {len(names)} benchmarks ({', '.join(names) or 'none'}); need " \
+            "exactly one", BAD_INPUT
     rec["benchmark"] = names[0]
     its = [b for b in benches if b.get("run_type", "iteration") == "iteration"]
     aggs = {b.get("aggregate_name"): b for b in benches if b.get("run_type") == "aggregate"}
     if not its or counter not in its[0]:
         have = sorted(k for k in (its[0] if its else {}) if isinstance(its[0].get(k), (int, float))) if its else []
-        return rec, f"{exe}: no counter {counter!r} in {names[0]} (numeric fields: {', '.join(have)})"
+        return rec, f"{exe}: no counter {counter!r} in {names[0]} (numeric fields: {', '.join(have)})", BAD_INPUT
+    if any(counter not in b for b in its):
+        return rec, f"{exe}: {names[0]} lacks {counter!r} in some repetitions (an errored run?)", FAILED
     rec["values"] = [float(b[counter]) for b in its]
     rec["real_time"] = [float(b["real_time"]) for b in its]
     rec["cpu_time"] = [float(b["cpu_time"]) for b in its]
@@ -81,7 +89,7 @@ def run_once(exe, filt, counter, repetitions, extra, tmp, tag):
     rec["iterations"] = [int(b["iterations"]) for b in its]
     rec["gbench_median"] = float(aggs["median"][counter]) if "median" in aggs else float(np.median(rec["values"]))
     rec["gbench_cv"] = float(aggs["cv"][counter]) if "cv" in aggs else None
-    return rec, None
+    return rec, None, 0
 
 
 def summary(exe, filt, counter, runs):
@@ -111,12 +119,14 @@ def main():
     ap.add_argument("--limit-args", default="", help="extra arguments of the limit driver (one string)")
     ap.add_argument("--out", required=True, help="JSON file to write")
     ap.add_argument("--max-ratio", type=float, default=None,
-                    help="a bound to check: exit status 2 if the ratio of the medians exceeds it")
+                    help="a bound to check: exit status 1 if the ratio of the medians exceeds it")
     ap.add_argument("--min-ratio", type=float, default=None,
-                    help="a bound to check: exit status 2 if the ratio of the medians is below it")
+                    help="a bound to check: exit status 1 if the ratio of the medians is below it")
     args = ap.parse_args()
     if args.repetitions < 1 or args.rounds < 1:
         ap.error("--repetitions and --rounds must be >= 1")
+    if args.max_ratio is not None and args.min_ratio is not None and args.min_ratio > args.max_ratio:
+        ap.error(f"--min-ratio {args.min_ratio} exceeds --max-ratio {args.max_ratio}: no ratio could pass")
 
     sides = {"bench": (args.bench, args.filter, args.counter, shlex.split(args.bench_args)),
              "limit": (args.limit, args.limit_filter, args.limit_counter, shlex.split(args.limit_args))}
@@ -125,10 +135,10 @@ def main():
         for i in range(args.rounds):
             for side in ("bench", "limit"):
                 exe, filt, counter, extra = sides[side]
-                rec, err = run_once(exe, filt, counter, args.repetitions, extra, tmp, f"{side}_{i}")
+                rec, err, status = run_once(exe, filt, counter, args.repetitions, extra, tmp, f"{side}_{i}")
                 if err:
                     print(f"ratio.py: {err}", file=sys.stderr)
-                    return 1
+                    return status
                 runs[side].append(rec)
                 print(f"round {i + 1}/{args.rounds} {side}: {rec['benchmark']} {counter} median "
                       f"{rec['gbench_median']:.4e} (cv {rec['gbench_cv'] or 0:.1%}), load {rec['load_avg_before'][0]:.2f}",
@@ -166,14 +176,14 @@ def main():
 
 
 def check_bounds(ratio, max_ratio, min_ratio):
-    """0 if ratio lies within the bounds given (none: 0), else 2, with a PASS/FAIL line."""
+    """0 if ratio lies within the bounds given (none: 0), else 1, with a PASS/FAIL line."""
     if max_ratio is None and min_ratio is None:
         return 0
     ok = (max_ratio is None or ratio <= max_ratio) and (min_ratio is None or ratio >= min_ratio)
     bounds = " and ".join(b for b in (f"<= {max_ratio}" if max_ratio is not None else "",
                                       f">= {min_ratio}" if min_ratio is not None else "") if b)
     print(f"{'PASS' if ok else 'FAIL'} ratio {ratio:.4f} ({bounds})")
-    return 0 if ok else 2
+    return 0 if ok else FAILED
 
 
 if __name__ == "__main__":

@@ -73,12 +73,22 @@ class CoagKernels final : public coag::StandaloneCells {
   Params p_;
 };
 
-/// An analytic kernel on a mass range of positive width.
+/// An analytic kernel on a mass range of positive width; the product kernel's
+/// solution holds before gelation only, T = K0 N0 m0^2 t < 1 at run.t_end (past it
+/// the solution is the sol's alone, whose mass is no longer the total).
 void check_analytic(const mote::core::Deck& d, mote::core::DeckCheck& check) {
   if (!d.has_table("coagulation"))
     check.fail_missing_table("coagulation", "coag_kernels needs it, with kernel = constant, additive or product");
   else if (d.string("coagulation.kernel") == "physical")
     check.fail("coagulation.kernel", "coag_kernels needs constant, additive or product");
+  else if (d.string("coagulation.kernel") == "product") {
+    const double m0 = d.real("analytic.m0");
+    const double T = d.real("coagulation.kernel_coefficient") * d.real("analytic.N0") * m0 * m0 * d.real("run.t_end");
+    if (!(T < 1.0))
+      check.fail("run.t_end", mote::logging::format("gives T = K0 N0 m0^2 t_end = %g: the product kernel's solution "
+                                                    "holds before gelation, T < 1",
+                                                    T));
+  }
   if (!(d.real("analytic.x_max") > d.real("analytic.x_min")))
     check.fail("analytic.x_max", "must exceed " + check.quote("analytic.x_min"));
 }

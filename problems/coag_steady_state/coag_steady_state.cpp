@@ -13,6 +13,7 @@
 #include "mote/coagulation/coagulation.hpp"
 #include "mote/coagulation/standalone_cells.hpp"
 #include "mote/core/deck.hpp"
+#include "mote/core/exit_codes.hpp"
 #include "mote/core/log.hpp"
 #include "mote/core/loops.hpp"
 #include "mote/core/units.hpp"
@@ -51,12 +52,17 @@ coag::GasCells gas_cells(const Params& p, const coag::CoagulationSettings& s) {
   return gas;
 }
 
-/// MRN: dN/da ~ a^-3.5, i.e. mass per logarithmic bin ~ a^0.5, truncated at a_init_max.
+/// MRN: dN/da ~ a^-3.5, i.e. mass per logarithmic bin ~ a^0.5, truncated at a_init_max
+/// (which must reach the grid's first bin).
 std::vector<double> mrn(const Params& p, const coag::MassGrid& grid) {
   std::vector<double> init(grid.size(), 0.0);
   double sum = 0;
   for (int k = 0; k < grid.size(); ++k)
     if (grid.grain_size(k) <= p.a_init_max * (1 + 1e-12)) sum += init[k] = std::sqrt(grid.grain_size(k));
+  if (sum == 0)
+    throw mote::core::InputError(mote::logging::format(
+        "disc.a_init_max = %g cm is below the grid's smallest grain, %g cm (coagulation.a_min): no initial dust",
+        p.a_init_max, grid.grain_size(0)));
   for (auto& v : init) v *= p.dust_to_gas * p.sigma_gas / sum;
   return init;
 }

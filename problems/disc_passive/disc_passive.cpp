@@ -131,7 +131,7 @@ RealView1 to_device(const std::string& name, const std::vector<double>& v, doubl
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
   const auto& u = ctx.units;
-  std::vector<double> sizes = d.real_array("dust.sizes");  // cm
+  const std::vector<double> sizes = disc::grain_sizes_cm(d);  // cm, as dust.sizes or dust.sizes_from gives them
   const SettledDust p{d.real("passive.dust_to_gas"), d.real("gas.alpha"), d.real("dust.floor")};
   const bool linear = d.string("passive.stokes") == "linear";
   const Real coefficient = d.real("passive.stokes_coefficient");

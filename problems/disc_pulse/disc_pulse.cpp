@@ -128,12 +128,18 @@ class DiscPulse final : public io::Simulation {
   double tau_ = 0.0;
 };
 
-/// The analytic pulse is one species advected and diffused, with no drag and no gravity.
+/// The analytic pulse (eq. 38) is one species advected and diffused with D in both
+/// directions on a planar grid, with no drag and no gravity.
 void check_pure_transport(const core::Deck& d, core::DeckCheck& check) {
-  if (d.real_array("dust.sizes").size() != 1)
-    check.fail("dust.sizes", "disc_pulse evolves one dust species: give one value");
+  if (disc::grain_sizes_cm(d).size() != 1) check.fail("dust.sizes", "disc_pulse evolves one dust species");
   for (const char* key : {"dust.drag", "dust.gravity"})
     if (d.boolean(key)) check.fail(key, "disc_pulse needs false");
+  for (const char* key : {"dust.diffusion", "dust.radial_fluxes"})
+    if (!d.boolean(key)) check.fail(key, "disc_pulse needs true (eq. 38 advects and diffuses in R and Z)");
+  if (d.string("grid.geometry") != "planar")
+    check.fail("grid.geometry", "disc_pulse needs \"planar\" (eq. 38 is the planar solution)");
+  for (double sc : d.real_array("dust.schmidt"))
+    if (sc != 1.0) check.fail("dust.schmidt", "disc_pulse needs 1 (D = pulse.diffusivity)");
 }
 
 void declare(core::DeckSchema& s) {

@@ -23,10 +23,9 @@ using namespace mote;
 
 /// One initial dust-to-gas ratio per species, or none (0.01 each).
 void check_dust_to_gas(const core::Deck& d, core::DeckCheck& check) {
-  const size_t n = d.real_array("settling.dust_to_gas").size(), ns = d.real_array("dust.sizes").size();
+  const size_t n = d.real_array("settling.dust_to_gas").size(), ns = disc::grain_sizes_cm(d).size();
   if (n != 0 && n != ns)
-    check.fail("settling.dust_to_gas",
-               mote::logging::cat("has ", n, " values for ", ns, " dust species (", check.quote("dust.sizes"), ")"));
+    check.fail("settling.dust_to_gas", mote::logging::cat("has ", n, " values for ", ns, " dust species"));
 }
 
 void declare(core::DeckSchema& s) {
@@ -41,7 +40,7 @@ void declare(core::DeckSchema& s) {
 
 std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
   const auto& d = ctx.deck;
-  const size_t ns = d.real_array("dust.sizes").size();
+  const size_t ns = disc::grain_sizes_cm(d).size();
   auto eps = d.real_array("settling.dust_to_gas");
   if (eps.empty()) eps.assign(ns, 0.01);
   return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units,

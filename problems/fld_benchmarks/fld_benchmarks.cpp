@@ -43,6 +43,7 @@ void declare(core::DeckSchema& s) {
   s.real("fld_test.rho").default_value(1e-12).greater_than(0.0).unit("code density").doc("equilibrium: density.");
   s.real_array("fld_test.kappa_planck")
       .default_value(std::vector<double>{10.0, 3.0, 1.0, 0.3})
+      .greater_than(0.0)
       .unit("code length^2 / code mass")
       .doc("equilibrium: Planck mean absorption opacity per band.");
   s.real("fld_test.rosseland_factor")
@@ -60,6 +61,8 @@ void declare(core::DeckSchema& s) {
     if (d.string("fld_test.case") == "equilibrium" &&
         static_cast<long long>(d.real_array("fld_test.kappa_planck").size()) != d.integer("radiation.bands"))
       check.fail("fld_test.kappa_planck", "needs one value per band (radiation.bands)");
+    if (d.string("fld_test.case") == "diffusion" && d.string("grid.geometry") != "planar")
+      check.fail("grid.geometry", "the diffusion case needs \"planar\" (its reference is the planar heat kernel)");
   });
 }
 

@@ -17,6 +17,7 @@
 // One run is one solve (t_end = 1, dt = 1).
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mote/core/exit_codes.hpp"
@@ -156,10 +157,17 @@ class LinearSolverProblem : public io::Simulation {
       solve();
     } catch (const linalg::SolveFailure& e) {
       report_ = e.report();
+      failure_ = e.what();
       logging::warn("linear_solver: ", e.what());
     }
     solved_ = true;
     logging::info("linear_solver: ", report_.summary());
+  }
+
+  /// A failed solve ends the run as a numerical failure (exit 3), after the final
+  /// snapshot has written its attempts for check.py.
+  void finish(double) override {
+    if (!failure_.empty()) throw core::NumericalError("linear_solver: " + failure_);
   }
 
   void write_snapshot(io::SnapshotWriter& out) const override {
@@ -253,6 +261,7 @@ class LinearSolverProblem : public io::Simulation {
   const core::Deck& deck_;
   std::string kind_;
   bool solved_ = false;
+  std::string failure_;  // the SolveFailure's message, empty when the solve converged
   linalg::SolveReport report_;
   std::vector<double> row_map_, columns_, values_, rhs_, solution_;
 };

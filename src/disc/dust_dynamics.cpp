@@ -16,18 +16,6 @@ namespace mote::disc {
 
 namespace {
 
-/// Grain radii (cm) from dust.sizes, or dust.species radii logarithmically spaced
-/// from dust.a_min to dust.a_max (both included) for dust.sizes_from = "log".
-std::vector<double> grain_sizes_cm(const core::Deck& d) {
-  if (d.string("dust.sizes_from") == "list") return d.real_array("dust.sizes");
-  const long long n = d.integer("dust.species");
-  const double a0 = d.real("dust.a_min"), a1 = d.real("dust.a_max");
-  std::vector<double> a(static_cast<size_t>(n), a0);
-  for (long long s = 1; s < n; ++s)
-    a[static_cast<size_t>(s)] = a0 * std::pow(a1 / a0, static_cast<double>(s) / static_cast<double>(n - 1));
-  return a;
-}
-
 /// At least one species, a size range that is one, and one Schmidt number per
 /// species (or none: all 1).
 void check_species(const core::Deck& d, core::DeckCheck& check) {
@@ -104,6 +92,16 @@ RealView3 cell_gravity(const mesh::Grid& grid, const StellarGravity& star) {
 }
 
 }  // namespace
+
+std::vector<double> grain_sizes_cm(const core::Deck& d) {
+  if (d.string("dust.sizes_from") == "list") return d.real_array("dust.sizes");
+  const long long n = d.integer("dust.species");
+  const double a0 = d.real("dust.a_min"), a1 = d.real("dust.a_max");
+  std::vector<double> a(static_cast<size_t>(n), a0);
+  for (long long s = 1; s < n; ++s)
+    a[static_cast<size_t>(s)] = a0 * std::pow(a1 / a0, static_cast<double>(s) / static_cast<double>(n - 1));
+  return a;
+}
 
 void DustSettings::declare(core::DeckSchema& s) {
   s.table("dust", "Pressureless dust species on the grid (RBO24 sec. 3).");

@@ -3,8 +3,9 @@
 ILU(1) and ILU(2), the near-skew system through the fallback ladder, and the
 assembled FLD system, each through check.py against numpy's direct solve
 (relative residual <= tolerance, error <= 10 x tolerance, iterations
-reported; the figure in WORKDIR/linear_solver.png); and a velocity of three
-values refused before any output (exit 2).
+reported; the figure in WORKDIR/linear_solver.png); plain BiCGStab on the
+near-skew system ends with exit 3 after writing its snapshot; and a velocity
+of three values refused before any output (exit 2).
 
 usage: linear_solver_check.py EXE WORKDIR
 """
@@ -38,6 +39,12 @@ c = run([sys.executable, check_py, skew, "--expect-ladder"], expect=None)
 print(c.stdout.strip())
 checks.check(c.returncode == 0 and "4 passed, 0 failed" in c.stdout,
              "D1: the near-skew system fails plain BiCGStab and the ladder's ILU(0) solves it")
+
+plain = os.path.join(work, "skew_plain")
+c = run([exe, os.path.join(pdir, "near_skew.toml"), f"output.dir={plain}", "linear_solver.fallback=false"], expect=None)
+checks.check(c.returncode == 3 and os.path.exists(os.path.join(plain, "snapshot_00001.h5")),
+             f"the near-skew system without the ladder fails: exit {c.returncode} (3, numerical), its attempts "
+             "written first")
 
 bad = os.path.join(work, "bad")
 c = run([exe, os.path.join(pdir, "convection_diffusion.toml"), f"output.dir={bad}", "system.velocity=[1.0, 2.0, 3.0]"],

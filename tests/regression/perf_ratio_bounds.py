@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """perf/ratio.py as a check (perf/README.md): with --max-ratio / --min-ratio it
-prints a PASS or FAIL line and exits 2 when the ratio of the medians lies
-outside the bounds, 0 inside them, and 1 when a driver's counter is missing.
+prints a PASS or FAIL line and exits 1 when the ratio of the medians lies
+outside the bounds, 0 inside them, and 2 (bad input) when a driver's counter
+is missing or the bounds are inverted.
 Two stand-in drivers write fixed Google Benchmark JSON (counter 5 and 4 in
 every repetition), so the ratio is exactly 1.25 and nothing is timed.
 
@@ -45,12 +46,15 @@ inside = run(common + ["--max-ratio", "1.3", "--min-ratio", "1.2"], expect=None)
 checks.check(inside.returncode == 0 and "PASS ratio 1.2500" in inside.stdout,
              f"ratio 1.25 within [1.2, 1.3]: exit {inside.returncode}, a PASS line")
 above = run(common + ["--max-ratio", "1.2"], expect=None)
-checks.check(above.returncode == 2 and "FAIL ratio 1.2500 (<= 1.2)" in above.stdout,
+checks.check(above.returncode == 1 and "FAIL ratio 1.2500 (<= 1.2)" in above.stdout,
              f"ratio 1.25 above --max-ratio 1.2: exit {above.returncode}, a FAIL line")
 below = run(common + ["--min-ratio", "1.5"], expect=None)
-checks.check(below.returncode == 2 and "FAIL ratio 1.2500 (>= 1.5)" in below.stdout,
+checks.check(below.returncode == 1 and "FAIL ratio 1.2500 (>= 1.5)" in below.stdout,
              f"ratio 1.25 below --min-ratio 1.5: exit {below.returncode}, a FAIL line")
 missing = run(common[:4] + ["--counter", "other"] + common[6:] + ["--max-ratio", "2"], expect=None)
-checks.check(missing.returncode == 1 and "no counter 'other'" in missing.stdout + missing.stderr,
-             f"a counter the driver does not report: exit {missing.returncode}, naming it")
+checks.check(missing.returncode == 2 and "no counter 'other'" in missing.stdout + missing.stderr,
+             f"a counter the driver does not report: exit {missing.returncode} (2), naming it")
+inverted = run(common + ["--max-ratio", "1.2", "--min-ratio", "1.3"], expect=None)
+checks.check(inverted.returncode == 2 and "exceeds --max-ratio" in inverted.stderr,
+             f"--min-ratio above --max-ratio: exit {inverted.returncode} (2), before any run")
 sys.exit(checks.finish())

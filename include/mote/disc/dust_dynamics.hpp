@@ -80,6 +80,11 @@ KOKKOS_INLINE_FUNCTION void trace_ceiling(Real& vR, Real& vZ, Real c, Real dR, R
   }
 }
 
+/// Grain radii (cm) from dust.sizes, or dust.species radii logarithmically spaced
+/// from dust.a_min to dust.a_max (both included) for dust.sizes_from = "log": one
+/// per species, whichever way the deck gives them.
+std::vector<double> grain_sizes_cm(const core::Deck& d);
+
 struct DustSettings {
   std::vector<double> sizes;    // grain radii, code length
   std::vector<double> schmidt;  // per species
