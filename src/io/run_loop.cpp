@@ -21,9 +21,12 @@ namespace mote::io {
 namespace {
 
 // The one piece of global state a signal handler needs.
-volatile std::sig_atomic_t g_stop_signal = 0;
+// A lock-free atomic: the handler may run on any thread (HDF5's, MPI's), which a
+// volatile sig_atomic_t only covers on the thread that reads it.
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may only touch lock-free atomics");
 
-extern "C" void mote_on_stop_signal(int sig) { g_stop_signal = sig; }
+extern "C" void mote_on_stop_signal(int sig) { g_stop_signal.store(sig, std::memory_order_relaxed); }
 
 /// Installs SIGINT/SIGTERM handlers for the lifetime of a run and restores the previous ones;
 /// SIGPIPE is ignored meanwhile.
@@ -36,7 +39,7 @@ extern "C" void mote_on_stop_signal(int sig) { g_stop_signal = sig; }
 class SignalGuard {
  public:
   SignalGuard() {
-    g_stop_signal = 0;
+    g_stop_signal.store(0);
     struct sigaction action {};
     action.sa_handler = mote_on_stop_signal;
     sigemptyset(&action.sa_mask);
@@ -647,7 +650,7 @@ int RunLoop::run_steps(Simulation& sim, State& s, bool restarting, double wall_s
   double last_progress = wall_now(), last_checkpoint = wall_now();
   const double t_end = settings_.t_end;
   while (s.time < t_end && (settings_.max_steps == 0 || s.step < settings_.max_steps)) {
-    if (const int sig = comm_.max(static_cast<int>(g_stop_signal)); sig != 0) {
+    if (const int sig = comm_.max(g_stop_signal.load(std::memory_order_relaxed)); sig != 0) {
       // The checkpoint before any log line: a log write that blocks cannot cost it.
       if (report_non_finite(sim, s)) return core::kExitNonFinite;
       const bool written_before = checkpointed_step == s.step;  // by the step the signal followed
