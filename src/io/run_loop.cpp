@@ -108,7 +108,7 @@ void check_output_cadence(const core::Deck& d, core::DeckCheck& check) {
   const double every = d.real("output.snapshot_dt");
   if (every > 0.0 && every < dt_min)
     check.fail("output.snapshot_dt",
-               logging::format("= %g is below the smallest allowed time-step, run.dt_min = %g", every, dt_min));
+               logging::format("%g is below the smallest allowed time-step, run.dt_min = %g", every, dt_min));
   const auto& times = d.real_array("output.snapshot_times");
   for (std::size_t k = 0; k < times.size(); ++k) {
     const double gap = times[k] - (k == 0 ? 0.0 : times[k - 1]);

@@ -86,8 +86,14 @@ def main():
          ["limited by the advection-diffusion CFL (scheme.cfl), is below run.dt_min = 1"])
     sod_out = os.path.join(work, "out_sod")
     case("SPH dt below run.dt_min",
-         [sod, os.path.join(problems, "sph_sod", "sph_sod.toml"), "output.dir=" + sod_out, "run.dt_min=1.0"],
+         [sod, os.path.join(problems, "sph_sod", "sph_sod.toml"), "output.dir=" + sod_out, "run.dt_min=1.0",
+          "output.snapshot_dt=0.0"],
          NUMERICAL, ["limited by the SPH gas Courant/force/damping condition", "is below run.dt_min = 1"])
+    cadence_out = os.path.join(work, "out_cadence")
+    case("snapshot cadence below run.dt_min",
+         [sod, os.path.join(problems, "sph_sod", "sph_sod.toml"), "output.dir=" + cadence_out, "run.dt_min=1.0"],
+         BAD_INPUT, ["key 'output.snapshot_dt': 0.05 is below the smallest allowed time-step, run.dt_min = 1"],
+         out=cadence_out)
 
     case("missing checkpoint", [pulse, good, "--restart", os.path.join(work, "checkpoint_00009.h5")], BAD_INPUT,
          ["cannot restart from checkpoint"])
