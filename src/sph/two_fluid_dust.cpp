@@ -8,6 +8,7 @@
 
 #include "mote/core/device_sort.hpp"
 #include "mote/core/loops.hpp"
+#include "mote/core/small_eigen.hpp"
 #include "mote/io/h5_file.hpp"
 #include "mote/io/phantom_dump.hpp"
 #include "mote/sph/kernels.hpp"
@@ -86,7 +87,9 @@ struct DragPair {
   /// 1 / (t_s (1 + eps)), xi, Lambda and r^ . e.
   KOKKOS_INLINE_FUNCTION bool terms(int i, int k, int img_from_i, Real& w, Real& sr, Real e[3], Real& ve,
                                     Real coeff[4]) const {
-    if (!(tinv(i, 0) > 0.0)) return false;  // a dust particle outside all gas supports feels no drag
+    Real tinv_trace = 0.0;
+    for (int d = 0; d < Dim; ++d) tinv_trace += tinv(i, 4 * d);
+    if (!(tinv_trace > 0.0)) return false;  // a dust particle outside all gas supports feels no drag
     Real rhat[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
     for (int d = 0; d < Dim; ++d) {
       rhat[d] = box.separation(x(i, d), x(k, d), img_from_i, d);
@@ -148,8 +151,31 @@ void pack_drag_factors(const Particles& p, const RealView2& v_start, const RealV
       });
 }
 
+/// Pseudo-inverse of the symmetric positive semi-definite t: the inverse on
+/// the eigen-directions with eigenvalue above 1e-6 of the largest, zero on the
+/// others (the directions no gas neighbour samples).
+template <int Dim>
+KOKKOS_INLINE_FUNCTION void pseudo_inverse(const Real t[9], Real out[9]) {
+  Real a[9], vec[9];
+  for (int c = 0; c < 9; ++c) a[c] = t[c];
+  jacobi_eigen_spd(Dim, 3, a, vec);
+  Real largest = 0.0;
+  for (int d = 0; d < Dim; ++d) largest = math::fmax(largest, a[4 * d]);
+  for (int e = 0; e < Dim; ++e) {
+    const Real lambda = a[4 * e];
+    if (!(lambda > 1e-6 * largest)) continue;
+    for (int r = 0; r < Dim; ++r)
+      for (int c = 0; c < Dim; ++c) out[3 * r + c] += vec[3 * r + e] * vec[3 * c + e] / lambda;
+  }
+}
+
 /// Inverse of the symmetric Dim x Dim moment t (row-major, 3 x 3 storage), or
-/// (Dim / trace) I where t is nearly singular (gas neighbours on a line or plane).
+/// its pseudo-inverse where t is nearly singular (gas neighbours on a line or
+/// a plane, or a single one): the drag then acts, exactly, along the
+/// directions the neighbours sample and not at all across them. (LAB15's
+/// isotropic nu / N_i, used here before, multiplied the impulse along a
+/// single neighbour's direction by Dim: v_DG went 1, -2, 4, ... in 3D at
+/// dt >> t_s.)
 template <int Dim>
 KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
   for (int c = 0; c < 9; ++c) out[c] = 0.0;
@@ -187,7 +213,7 @@ KOKKOS_INLINE_FUNCTION void invert_moment(const Real t[9], Real out[9]) {
       return;
     }
   }
-  for (int d = 0; d < Dim; ++d) out[4 * d] = 1.0 / scale;  // LAB15's isotropic nu / N_i
+  pseudo_inverse<Dim>(t, out);
 }
 
 /// Columns of TwoFluidDust::pair_terms: a pair's terms as DragPair::terms gives them.
