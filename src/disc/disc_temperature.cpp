@@ -54,6 +54,12 @@ void TemperatureSettings::declare(core::DeckSchema& s) {
       .default_value(10.0)
       .greater_than(1.0)
       .doc("The interval to the next update is at most this many times the last one.");
+  s.real("temperature.max_interval")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code time")
+      .restart_mutable()
+      .doc("Longest interval between updates, however small the change (cuDisc caps it at 5000 yr); 0 = none.");
   s.real("temperature.gamma")
       .default_value(1.4)
       .greater_than(1.0)
@@ -72,6 +78,7 @@ TemperatureSettings TemperatureSettings::from_deck(const core::Deck& d) {
   t.steady_solves = static_cast<int>(d.integer("temperature.steady_solves"));
   t.steady_forcing = d.real("temperature.steady_forcing");
   t.max_growth = d.real("temperature.max_growth");
+  t.max_interval = d.real("temperature.max_interval");
   t.gamma = d.real("temperature.gamma");
   t.viscous_heating = d.boolean("temperature.viscous_heating");
   return t;
@@ -224,9 +231,14 @@ std::string DiscTemperature::solve_summary() const {
                       "; ", record_.solve_seconds, " s in the linear solver");
 }
 
+double DiscTemperature::capped_interval(double interval) const {
+  return settings_.max_interval > 0.0 ? std::min(interval, settings_.max_interval) : interval;
+}
+
 void DiscTemperature::update(double elapsed) {
   Kokkos::deep_copy(T_before_, state_.T);
   Kokkos::deep_copy(E_before_, state_.E);
+  const double absorbed_before = absorbed_;
   prepare_fields();
   try {
     solve(elapsed);
@@ -235,6 +247,8 @@ void DiscTemperature::update(double elapsed) {
     // it may be this rank's alone, and the run then stops every rank (problem_main.cpp stop_after).
     Kokkos::deep_copy(state_.T, T_before_);
     Kokkos::deep_copy(state_.E, E_before_);
+    absorbed_ = absorbed_before;                              // the diagnostics describe the kept state
+    if (band_means_at_cell_T_) refresh_band_means(state_.T);  // not the last iterate's
     const char* hint = updates_ == 0
                            ? " (the first steady state settles to a tenth of temperature.update_tolerance, in at most "
                              "temperature.steady_solves solves)"
@@ -246,7 +260,7 @@ void DiscTemperature::update(double elapsed) {
                 ? radiation::mean_relative_change(grid_, state_.T, T_before_)
                 : radiation::largest_relative_change(grid_, state_.T, T_before_);
   open_luminosity_ = fld_.open_boundary_luminosity(state_);
-  const double cap = settings_.max_growth * elapsed;
+  const double cap = capped_interval(settings_.max_growth * elapsed);
   next_interval_ = change_ > 0.0 ? std::min(settings_.update_tolerance * elapsed / change_, cap) : cap;
   ++updates_;
   hand_to_gas();
@@ -282,7 +296,7 @@ void DiscTemperature::load_state(const io::H5File& file, const std::string& grou
   const auto attribute = [&](const char* name) { return file.read_attribute_real(group + "/T_E", name); };
   updates_ = file.read_attribute_int(group + "/T_E", "updates");
   change_ = attribute("change");
-  next_interval_ = attribute("next_interval");
+  next_interval_ = capped_interval(attribute("next_interval"));  // a restart may lower temperature.max_interval
   iterations_ = attribute("iterations");
   solve_seconds_ = attribute("solve_seconds");
   if (file.has_attribute(group + "/T_E", "last_residual")) {  // checkpoints before these columns: zeros

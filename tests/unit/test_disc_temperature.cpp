@@ -187,6 +187,26 @@ TEST(DiscTemperature, UpdatesFollowThePredictedChange) {
               temperature->next_interval(), first_interval);
 }
 
+// temperature.max_interval (cuDisc's 5000 yr) holds the interval however
+// small the change: here at the first update's, so that every later update
+// is at most that far apart (the step is constant in this disc).
+TEST(DiscTemperature, UpdateIntervalIsCappedByMaxInterval) {
+  DiscRun free_run;
+  free_run.steps(1);
+  const double cap = free_run.sim.temperature()->next_interval();
+  free_run.steps(11);
+  DiscRun capped({"temperature.max_interval=" + std::to_string(cap)});
+  for (int k = 0; k < 12; ++k) {
+    capped.steps(1);
+    EXPECT_LE(capped.sim.temperature()->next_interval(), cap);
+  }
+  std::printf("updates in 12 steps: %lld with max_interval = %.3e, %lld without (next interval %.3e)\n",
+              capped.sim.temperature()->updates(), cap, free_run.sim.temperature()->updates(),
+              free_run.sim.temperature()->next_interval());
+  EXPECT_GT(free_run.sim.temperature()->next_interval(), cap);
+  EXPECT_GT(capped.sim.temperature()->updates(), free_run.sim.temperature()->updates());
+}
+
 TEST(DiscTemperature, RadiatedPowerIsStarlightPlusViscousHeating) {
   // A cooler star and alpha = 0.1: eq. 44 is a large part of the heating.
   DiscRun run({"temperature.viscous_heating=true", "gas.alpha=0.1", "radiation.star_T_eff=1500.0",
@@ -242,6 +262,8 @@ TEST(DiscTemperature, FailedUpdatesKeepTheTemperature) {
     EXPECT_EQ(run.sim.temperature()->updates(), 0);
     EXPECT_TRUE(same(run.sim.gas().fields().T, before));
     EXPECT_TRUE(same(run.sim.temperature()->state().T, before));
+    for (const auto& d : run.sim.temperature()->diagnostics())  // no absorbed starlight from a rejected update
+      if (d.name == "absorbed_star") EXPECT_EQ(d.value, 0.0);
   }
   // The first solve succeeds and moves T and E, and the steady state is cut
   // off after it (temperature.steady_solves): both are rolled back, and the

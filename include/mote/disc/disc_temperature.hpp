@@ -23,13 +23,14 @@
 // over the active cells, or with temperature.change_measure = "mean" their
 // mean, as cuDisc's fracerr without its ghost cells), the next is due after
 // update_tolerance * elapsed / delta (the time the same rate takes to change T
-// by update_tolerance), at most max_growth * elapsed.
+// by update_tolerance), at most max_growth * elapsed and, where set,
+// temperature.max_interval (cuDisc's steadyTD caps it at 5000 yr).
 //
 // The steady state at the first call is mote's choice (RBO24 sec. 6 only
 // says the first update is on the first step). A failed solve leaves T, E
-// and the gas temperature unchanged and raises core::NumericalError; the
-// dust and gas step of that driver step is not rolled back (the run stops).
-// One MPI rank only (as FldSolver).
+// and the gas temperature unchanged (and the absorbed starlight it reports)
+// and raises core::NumericalError; the dust and gas step of that driver step
+// is not rolled back (the run stops).
 #pragma once
 
 #include <string>
@@ -60,8 +61,9 @@ struct TemperatureSettings {
   int steady_solves = 30;  // most lagged solves of the first update's steady state
   double steady_forcing = radiation::FldSolver::kSteadyForcing;  // inexact lagged solves (0: exact)
   double max_growth = 10.0;                                      // next interval <= max_growth x the last elapsed one
-  double gamma = 1.4;                                            // adiabatic index of c_V
-  bool viscous_heating = true;                                   // eq. 44
+  double max_interval = 0.0;    // longest interval between updates, code time (0: none; cuDisc's is 5000 yr)
+  double gamma = 1.4;           // adiabatic index of c_V
+  bool viscous_heating = true;  // eq. 44
 
   static void declare(core::DeckSchema& schema);
   static TemperatureSettings from_deck(const core::Deck& deck);
@@ -99,6 +101,7 @@ class DiscTemperature {
   void refresh_band_means(const RealView2& T);  // FLD band opacities at each cell's T
   void solve(double elapsed);
   void hand_to_gas();
+  double capped_interval(double interval) const;  // at most temperature.max_interval, where set
 
   const mesh::Grid& grid_;
   GasDisc& gas_;

@@ -34,7 +34,9 @@ class GasDisc {
   /// into `rate` on the active cells (e.g. wind mass loss, negative). Applied
   /// after the viscous step by explicit Euler (RBO24 sec. 3.3).
   using SourceHook = std::function<void(double time, const GasFields& gas, const RealView1& rate)>;
-  /// Sigma at radius R and time t, for the ghost cells of "user" boundaries.
+  /// Sigma at radius R and time t, for the ghost cells of "user" boundaries:
+  /// a host function, so its 2 ng values are copied to the device on every
+  /// gas sub-step (the one host-device copy inside a step, with "user" only).
   using BoundaryValues = std::function<double(double R, double time)>;
 
   /// Tables [gas] and [star]; "user" boundaries for a problem that calls set_boundary_values.
