@@ -8,8 +8,8 @@ packages=(
   libtrilinos-kokkos-dev libtrilinos-kokkos-kernels-dev
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
   libgtest-dev libtomlplusplus-dev libbenchmark-dev
-  python3 python3-h5py python3-numpy python3-matplotlib python3-venv python3-pip python3-setuptools
-  paraview python3-paraview xvfb  # tests: ParaView's XDMF readers (pvbatch), rendering under xvfb-run
+  python3 python3-h5py python3-numpy python3-matplotlib python3-scipy python3-venv python3-pip python3-setuptools
+  paraview python3-paraview xvfb xauth  # tests: ParaView's XDMF readers (pvbatch), rendering under xvfb-run
   splash  # tests: SPLASH reads the Phantom dumps of SPH problems (splash -f phantom)
 )
 

@@ -25,6 +25,8 @@ from mote.verdict import Verdict  # noqa: E402
 
 def mass_density(kernel, x, T):
     """x F(x): mass per unit x in units of N0 m0, at dimensionless time T."""
+    if T == 0.0:  # the initial x e^-x of every kernel (the series below divide by sqrt(T))
+        return x * np.exp(-x)
     if kernel == "constant":
         g = 2.0 / (2.0 + T)
         return x * g * g * np.exp(-g * x)

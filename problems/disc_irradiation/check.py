@@ -6,7 +6,8 @@
 From the last snapshot: T against the optically thin blackbody temperature
 T_thin = T_star (R_star / 2 r)^(1/2), r = R / cos(theta) the distance to the
 star, in every cell whose radial stellar optical depth (grey: the column of
-rho_d kappa_abs along the ray, computed here from rho_gas and the deck) is
+rho_d (kappa_abs + kappa_sca) along the ray, the extinction of the direct
+starlight, computed here from rho_gas and the deck; grey opacities only) is
 below --thin-tau; threshold 1 % (VALIDATION D2). And the steady-state energy
 balance from history.txt: the luminosity leaving through the open sides
 equals the absorbed starlight to 1e-3 (the D5 criterion). Prints PASS/FAIL lines and
@@ -31,6 +32,8 @@ def analyse(run_dir, thin_tau=1e-3):
     snap = mote.last_snapshot(run_dir)
     deck = tomllib.loads(snap.deck)
     rad, disc = deck["radiation"], deck["irradiation"]
+    if rad.get("opacity", "grey") != "grey":
+        sys.exit(f"check.py: the optical depth here needs radiation.opacity = \"grey\", not {rad['opacity']!r}")
     length = snap.units["length_cm"]
     R = snap.data["R_centres"] * length
     theta = snap.data["theta_centres"]

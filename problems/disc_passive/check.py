@@ -70,7 +70,7 @@ def analyse(run_dir, fine_dir=None):
     out = {"R": R, "theta": theta, "T": T, "R_in": R_in,
            "energy_balance": float(hist["open_luminosity"][-1] / hist["absorbed_star"][-1] - 1.0),
            "fld_iterations": int(hist["fld_iterations"][-1])}
-    outer = R >= RIM * R[0]
+    outer = R >= RIM * R_in
     out["superheating_min"] = float((T.max(axis=1) / T[:, 0])[outer].min())
     if fine_dir:
         Rf, thetaf, Tf, _ = load(fine_dir)
@@ -145,7 +145,7 @@ def pinte_checks(run_dir, out):
                                         lam, k_abs) for i in range(len(R))])
     out["T_thin"] = T_thin
     ratio = T[:, top] / T_thin - 1.0
-    outer = R >= RIM * R[0]
+    outer = R >= RIM * out["R_in"]
     out["thin_worst"] = float(ratio[outer][np.argmax(np.abs(ratio[outer]))])
     out["thin_median"] = float(np.median(ratio[outer]))
     k_081 = np.exp([np.interp(np.log(0.81e-4), np.log(lam), np.log(ks)) for ks in k_ext])

@@ -137,7 +137,7 @@ def main():
         else:
             v.info(f"{label}: max relative error of v_D {err:.3e} (reported)")
         v.check(dp <= 1e-12, f"{label}: momentum = initial + M_D a_D t to {dp:.2e} of sum m|v| (<= 1e-12)")
-        curves.append((t, vd, ve, ts[k], args.labels[k] if args.labels else f"t_s = {ts[k]:g}", err))
+        curves.append((t, vd, eps[k], ts[k], args.labels[k] if args.labels else f"t_s = {ts[k]:g}", err))
     if args.plot:
         import matplotlib
 
@@ -145,9 +145,9 @@ def main():
         import matplotlib.pyplot as plt
 
         fig, ax = plt.subplots(figsize=(6, 4.5))
-        for t, vd, ve, tsk, label, err in curves:
+        for t, vd, epsk, tsk, label, err in curves:
             tt = np.linspace(0.0, t[-1], 400)
-            line = ax.semilogy(tt, exact(tt, args.v0, args.a_dust, eps[0], tsk), "-", lw=1)[0]
+            line = ax.semilogy(tt, exact(tt, args.v0, args.a_dust, epsk, tsk), "-", lw=1)[0]
             ax.semilogy(t, vd, "o", ms=3, color=line.get_color(), label=f"{label} (error {err:.1e})")
         ax.set_xlabel("t")
         ax.set_ylabel("v_D")

@@ -121,7 +121,6 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         o = np.argsort(x)
-        xs = np.linspace(0, 1, 400)
         fig, ax = plt.subplots(figsize=(7, 4))
         for n, e, name, mk in zip(num, exact, ("gas", "dust"), ("o", "s")):
             ax.plot(x[o], n[o], mk, ms=3, mfc="none" if name == "dust" else None, label=f"v_{name[0]} mote")

@@ -79,7 +79,7 @@ mid-plane from the cell nearest --cool-from outward, both <= --against-T-tol
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
 --radius), fig15_sigma_mR.png (sigma_d(m, R) with the fragmentation and drift
 limits; Fig. 19 for v_frag = 1000), fig16_heights.png (size distributions at
-1, 2, 3 h_g), fig17_vertical.png (three sizes against Takeuchi & Lin; Fig. 20).
+Z = 0, 1, 2, 3 h_g), fig17_vertical.png (three sizes against Takeuchi & Lin; Fig. 20).
 Prints 'N passed, M failed'; exits non-zero on failure.
 """
 import argparse

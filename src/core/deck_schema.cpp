@@ -269,6 +269,16 @@ std::string DeckSchema::help_text() const {
   return os.str();
 }
 
+std::vector<std::string> DeckSchema::undocumented() const {
+  const auto blank = [](const std::string& text) { return text.find_first_not_of(" \t\n") == std::string::npos; };
+  std::vector<std::string> out;
+  for (const auto& t : tables_)
+    if (blank(t.doc)) out.push_back("[" + t.name + "]");
+  for (const auto& k : keys_)
+    if (blank(k.doc_text())) out.push_back(k.table() + "." + k.key());
+  return out;
+}
+
 std::string DeckSchema::markdown() const {
   std::ostringstream os;
   for (const auto& t : tables_) {

@@ -121,7 +121,12 @@ std::optional<int> answer_information_request(int argc, char** argv, const Probl
       std::cout << "## Problem `" << problem.name << "`\n\n"
                 << problem.summary << "\n\n"
                 << schema.markdown() << std::endl;
-      return core::kExitFinished;
+      const auto missing = schema.undocumented();
+      if (missing.empty()) return core::kExitFinished;
+      std::cerr << "error: " << problem.name << " declares deck entries without a description:";
+      for (const auto& name : missing) std::cerr << " " << name;
+      std::cerr << std::endl;
+      return core::kExitError;
     }
   }
   return std::nullopt;

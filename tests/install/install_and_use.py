@@ -42,7 +42,8 @@ installed = ["include/mote/io/snapshot.hpp", "include/mote/core/kokkos_types.hpp
              "lib/cmake/mote/moteConfig.cmake", "lib/cmake/mote/moteConfigVersion.cmake",
              "lib/cmake/mote/moteTargets.cmake", "lib/cmake/mote/MoteProblem.cmake",
              "bin/gaussian_pulse", "bin/disc_pulse", "bin/sph_sod", "share/mote/problems/gaussian_pulse/gaussian_pulse.toml",
-             "share/mote/problems/gaussian_pulse/check.py", "share/mote/python/mote/__init__.py",
+             "share/mote/problems/gaussian_pulse/check.py", "share/mote/problems/disc_passive/pinte_opacities.dat",
+             "share/mote/python/mote/__init__.py",
              "share/mote/python/pyproject.toml"]
 missing = [f for f in installed if not os.path.exists(os.path.join(prefix, f))]
 checks.check(not missing, f"installed: {', '.join(installed)}" + (f" (missing: {missing})" if missing else ""))

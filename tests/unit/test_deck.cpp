@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "mote/core/deck.hpp"
 
@@ -158,6 +160,16 @@ TEST(DeckSchema, EditDistanceAndHelp) {
   EXPECT_NE(help.find("length (real)  required  [cm]  > 0"), std::string::npos) << help;
   EXPECT_NE(schema.markdown().find("| `nx` | integer | `64` |"), std::string::npos);
   EXPECT_THROW(make_schema().real("grid.nx"), std::logic_error);  // declared twice
+}
+
+// docs.deck_reference fails a problem whose --deck-reference finds these.
+TEST(DeckSchema, UndocumentedEntriesAreListed) {
+  const std::vector<std::string> expected = {"grid.kind", "grid.periodic", "grid.sizes", "dust.grain_size"};
+  EXPECT_EQ(make_schema().undocumented(), expected);
+  DeckSchema s;
+  s.table("run", " ");
+  s.real("run.t_end").doc("End time.");
+  EXPECT_EQ(s.undocumented(), std::vector<std::string>{"[run]"});
 }
 
 // Issue 22: numbers that parse but cannot be run.

@@ -119,6 +119,8 @@ class DeckSchema {
   std::string help_text() const;
   /// Markdown reference (docs/deck reference).
   std::string markdown() const;
+  /// Tables ("[name]") and keys ("table.key") declared without a description.
+  std::vector<std::string> undocumented() const;
 
  private:
   KeySpec& add(const std::string& dotted, ValueType type);
