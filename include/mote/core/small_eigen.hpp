@@ -3,7 +3,10 @@
 // Demmel & Veselic (1992, SIAM J. Matrix Anal. Appl. 13, 1204): a rotation is
 // skipped where |a_pq| <= tol sqrt(a_pp a_qq), so that eigenvalues spanning
 // many decades (stiff drag rates) come out to relative accuracy. Used by the
-// multi-species drag (include/mote/sph/mixture_drag.hpp).
+// multi-species drag (include/mote/sph/mixture_drag.hpp) and, on a positive
+// semi-definite matrix (a zero diagonal entry has a zero row and is left as
+// it is), by the two-fluid drag's pseudo-inverse of a singular neighbour
+// moment (src/sph/two_fluid_dust.cpp).
 #pragma once
 
 #include "mote/core/kokkos_types.hpp"
