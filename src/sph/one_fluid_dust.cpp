@@ -351,6 +351,16 @@ std::vector<io::Diagnostic> OneFluidDust::history(const SphSystem& sys) const {
           {"tva_violations", static_cast<Real>(tva_violations_)}};
 }
 
+void OneFluidDust::to_gas_specific_energy(const SphSystem& sys, const HostView<Real*>& u) const {
+  if (s_.energy != DustEnergy::UTilde) return;
+  const auto e = IdOrder(sys.particles().id)(eps(sys.particles()));
+  for (size_t a = 0; a < u.extent(0); ++a) {
+    Real total = 0.0;
+    for (int j = 0; j < s_.nspecies; ++j) total += e(a, j);
+    u(a) /= 1.0 - total;
+  }
+}
+
 void OneFluidDust::write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const {
   const DustSnapshot ds = snapshot(sys.particles());
   const int n = sys.particles().n, dim = sys.particles().dim, ns = nspecies();

@@ -306,6 +306,7 @@ Snapshot SphSystem::snapshot() const {
   s.h = by_id(p_.h);
   s.rho = by_id(p_.rho);
   s.u = by_id(p_.u);
+  for (const auto& m : modules_) m->to_gas_specific_energy(*this, s.u);
   s.P = by_id(p_.P);
   s.m = by_id(p_.m);
   s.type = by_id(p_.type);

@@ -66,6 +66,8 @@ class OneFluidDust : public SphModule {
   /// projection) and tva_violations (particles where eps t_s exceeds the Courant
   /// step, PL15 eq. 18: the terminal-velocity approximation fails there).
   std::vector<io::Diagnostic> history(const SphSystem& sys) const override;
+  /// With energy = u_tilde: u = u~ / (1 - eps) (HPL18 sec. 2.1.3).
+  void to_gas_specific_energy(const SphSystem& sys, const HostView<Real*>& u) const override;
   void write_snapshot(const SphSystem& sys, io::SnapshotWriter& out, const units::UnitSystem& units) const override;
   /// ndustsmall = N and one array "dustfrac" per species (eps_j, Phantom's tag for each of them).
   void write_phantom_dump(const SphSystem& sys, io::PhantomDump& dump) const override;

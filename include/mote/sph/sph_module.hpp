@@ -69,6 +69,9 @@ class SphModule {
   virtual void add_diagnostics(const SphSystem&, Diagnostics&) const {}
   /// Extra history columns.
   virtual std::vector<io::Diagnostic> history(const SphSystem&) const { return {}; }
+  /// Turns the evolved energy variable of SphSystem::snapshot (id order) into the gas's specific energy, for a
+  /// module whose variable is not the gas u (one-fluid dust with u~ = (1 - eps) u); the output writes the gas u.
+  virtual void to_gas_specific_energy(const SphSystem&, const HostView<Real*>& /*u*/) const {}
   /// Snapshot fields, in id order, after the gas fields.
   virtual void write_snapshot(const SphSystem&, io::SnapshotWriter&, const units::UnitSystem&) const {}
   /// Phantom dump arrays and header values (in id order), after the gas ones (sph_simulation.hpp).

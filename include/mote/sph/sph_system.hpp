@@ -42,7 +42,7 @@ struct ParticleSetup {
 struct Snapshot {
   Real time = 0.0;
   HostView<Real**> x, v;
-  HostView<Real*> h, rho, u, P, m;
+  HostView<Real*> h, rho, u, P, m;  // u: the gas's specific energy (SphModule::to_gas_specific_energy)
   HostView<int*> type, id;
 };
 
