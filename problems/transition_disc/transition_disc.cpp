@@ -31,6 +31,13 @@ namespace {
 
 using namespace mote;
 
+/// An initial size limit below the smallest grain would leave no species to hold the initial dust.
+void check_initial_a_max(const core::Deck& d, core::DeckCheck& check) {
+  const double a_max = d.real("transition.initial_a_max");
+  if (a_max > 0 && a_max < disc::grain_sizes_cm(d).front())
+    check.fail("transition.initial_a_max", "below the smallest grain of the size grid: no species would hold the dust");
+}
+
 void declare(core::DeckSchema& s) {
   disc::DiscSimulation::declare(s);
   s.table("transition", "Initial dust of the transition disc (RBO24 sec. 7).");
@@ -46,9 +53,18 @@ void declare(core::DeckSchema& s) {
       .doc(
           "Inner edge of the initial dust, a factor exp[-(dust_R_in / R)^10] on the dust-to-gas ratio (cuDisc's "
           "steadyTD set-up: 6 au); 0: dust wherever the gas is.");
+  s.real("transition.initial_a_max")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("cm")
+      .doc(
+          "Largest grain of the initial MRN distribution: larger species start at the floor, the total "
+          "dust_to_gas shared among the others (RBO24 sec. 7: MRN up to 0.5 cm; the v_frag = 1000 cm/s grid "
+          "reaches 20 cm for the grains grown later); 0: every species of the grid.");
   s.real("transition.mrn_index")
       .default_value(3.5)
       .doc("q of the initial size distribution n(a) ~ a^-q (MRN: 3.5); mass per log bin ~ a^(4 - q).");
+  s.rule(check_initial_a_max);
   s.string("transition.dust_from")
       .default_value(std::string(""))
       .doc(
@@ -67,12 +83,13 @@ const std::vector<std::string> kDustStateKeys = {"grid.",      "run.units",  "du
 /// this factor of gas.rho_floor (the cavity) start with floor dust only.
 constexpr double kGasFloorMargin = 10.0;
 
-/// Dust-to-gas ratio per species: total * a_s^(4 - q) / sum_k a_k^(4 - q).
-std::vector<double> mrn_dust_to_gas(const std::vector<double>& sizes, double total, double q) {
+/// Dust-to-gas ratio per species: total * a_s^(4 - q) / sum_k a_k^(4 - q), the sums over
+/// the sizes up to a_max (larger species get 0; a_max = 0: every size).
+std::vector<double> mrn_dust_to_gas(const std::vector<double>& sizes, double total, double q, double a_max) {
   std::vector<double> eps;
   double sum = 0.0;
   for (double a : sizes) {
-    eps.push_back(std::pow(a / sizes.front(), 4.0 - q));
+    eps.push_back(a_max > 0 && a > a_max ? 0.0 : std::pow(a / sizes.front(), 4.0 - q));
     sum += eps.back();
   }
   for (double& e : eps) e *= total / sum;
@@ -104,8 +121,9 @@ std::unique_ptr<io::Simulation> create(const io::ProblemContext& ctx) {
     io::check_initial_state_source(from, "transition.dust_from", d, "transition_disc", kDustStateKeys, ctx.comm);
     return std::make_unique<disc::DiscSimulation>(d, ctx.comm, ctx.units, dust_from_checkpoint(from, ctx.comm));
   }
-  const auto sizes = disc::DustSettings::from_deck(d, ctx.units, {}).sizes;
-  const auto eps = mrn_dust_to_gas(sizes, d.real("transition.dust_to_gas"), d.real("transition.mrn_index"));
+  const auto sizes = disc::grain_sizes_cm(d);
+  const double a_max = d.real("transition.initial_a_max");
+  const auto eps = mrn_dust_to_gas(sizes, d.real("transition.dust_to_gas"), d.real("transition.mrn_index"), a_max);
   const auto mixed =
       disc::DiscSimulation::well_mixed(eps, d.real("dust.floor"), kGasFloorMargin * d.real("gas.rho_floor"));
   const double R_d = d.real("transition.dust_R_in");

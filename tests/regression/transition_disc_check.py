@@ -11,7 +11,8 @@ Checks:
   * gas v_R = 0 (gas.radial_velocity = "zero");
   * initial dust-to-gas ratio per species = the MRN share 0.01 a^0.5 / sum a^0.5
     times exp[-(6 au/R)^10] (at least the floor) wherever the gas is above 10 x
-    its floor, 1e-12; floor dust elsewhere;
+    its floor, 1e-12; floor dust elsewhere; with transition.initial_a_max the
+    shares over the sizes up to it and floor dust in the larger species;
   * mass budget: sum_s M_s - floor_added + outflow equals its initial value to
     1e-10 of the dust mass on every history row; the coagulation ran and moved
     mass between species;
@@ -72,6 +73,20 @@ n_disc, n_floor = np.count_nonzero(expected[0] > floor), np.count_nonzero(expect
 checks.check(e <= 1e-12 and n_disc > 0 and n_floor > 0,
              f"initial dust: MRN shares of dust-to-gas 0.01 x exp[-(6 au/R)^10] in {n_disc} cells, the floor in {n_floor}:"
              f" max relative error {e:.2e} <= 1e-12")
+
+# transition.initial_a_max: the MRN shares over the sizes up to it, the larger species at the floor.
+cut = os.path.join(work, "cut")
+run([exe, deck, f"output.dir={cut}", "run.max_steps=1", "transition.initial_a_max=0.1"])
+sc = mote.Snapshot(mote.list_snapshots(cut)[0])
+kept = a <= 0.1
+share_cut = np.where(kept, 0.01 * np.sqrt(a) / np.sum(np.sqrt(a[kept])), 0.0)
+expected_cut = [np.where(rho_g > 10 * 1e-24, np.maximum(share_cut[k] * rho_g * edge, floor), floor) for k in range(len(a))]
+e = max(np.max(np.abs(sc.fields[f"dust_rho_{k}"] / expected_cut[k] - 1)) for k in range(len(a)))
+checks.check(e <= 1e-12 and 0 < np.count_nonzero(kept) < len(a),
+             f"transition.initial_a_max = 0.1 cm: MRN shares of 0.01 over the {np.count_nonzero(kept)} sizes up to it, "
+             f"the {np.count_nonzero(~kept)} larger at the floor: max relative error {e:.2e} <= 1e-12")
+bad = run([exe, "--check", deck, "transition.initial_a_max=1e-6"], expect=2)
+checks.check("transition.initial_a_max" in bad.stderr, "an initial_a_max below the smallest grain is refused, naming the key")
 
 h = mote.read_history(os.path.join(full, "history.txt"))
 budget = h["dust_mass"] - h["dust_floor_added"] + h["dust_outflow"]
