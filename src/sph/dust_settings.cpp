@@ -128,7 +128,9 @@ void DustSettings::declare(core::DeckSchema& s) {
   s.real_array("dust.K")
       .default_value(std::vector<double>{1000.0})
       .greater_than(0.0)
-      .doc("Drag coefficients K_j (one value: all species).");
+      .doc(
+          "Drag coefficients K_j (one value: all species). HPL18 eq. 14: N equal bins of one grain population "
+          "reproduce its single-species run with K_j = K / N, not K.");
   s.real_array("dust.stopping_time")
       .default_value(std::vector<double>{0.1})
       .greater_than(0.0)

@@ -46,9 +46,13 @@ OneFluidDust::OneFluidDust(const DustSettings& s, int n, int dim) : s_(s) {
   if (!s_.eps.empty()) {
     auto he = Kokkos::create_mirror_view(var);
     for (int i = 0; i < n; ++i)
-      for (int j = 0; j < ns; ++j) he(i, j) = s_.species_value(s_.eps, j);
+      for (int j = 0; j < ns; ++j) he(i, j) = stored_fraction(s_.species_value(s_.eps, j));
     Kokkos::deep_copy(var, he);
   }
+}
+
+Real OneFluidDust::stored_fraction(Real eps) const {
+  return s_.variable == DustVariable::SqrtRhoEps ? std::sqrt(std::max(eps, Real(0))) : eps;
 }
 
 void OneFluidDust::set_eps(const std::vector<Real>& eps, const IntView1& id) {
@@ -57,7 +61,7 @@ void OneFluidDust::set_eps(const std::vector<Real>& eps, const IntView1& id) {
   auto he = Kokkos::create_mirror_view(var);
   auto hid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), id);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < ns; ++j) he(i, j) = eps[static_cast<std::size_t>(hid(i)) * ns + j];
+    for (int j = 0; j < ns; ++j) he(i, j) = stored_fraction(eps[static_cast<std::size_t>(hid(i)) * ns + j]);
   Kokkos::deep_copy(var, he);
 }
 
@@ -67,16 +71,9 @@ void OneFluidDust::reorder(ParticleReorder& r) {
   if (s_.limit_ts) r.apply(eps_ts_free);
 }
 
-void OneFluidDust::initialise(const Particles& p) {
-  // var holds eps_j; the S variable stores q_j = S_j / sqrt(rho) = sqrt(eps_j) (PL15 eq. B1).
-  if (s_.variable == DustVariable::SqrtRhoEps) {
-    const auto v = var;
-    const int ns = s_.nspecies;
-    par_for(
-        "sph::dust_to_q", 0, p.n, KOKKOS_LAMBDA(int a) {
-          for (int j = 0; j < ns; ++j) v(a, j) = math::sqrt(v(a, j) > 0.0 ? v(a, j) : 0.0);
-        });
-  }
+void OneFluidDust::initialise(const Particles&) {
+  // var holds the evolved variable since set-up (stored_fraction), so that a second call (SphSystem::add_module
+  // on a running system, then SphSystem::initialise) leaves it as it is.
   Kokkos::deep_copy(var_pred, var);
   Kokkos::deep_copy(dvar, 0.0);
   floored_mass_ = 0.0;

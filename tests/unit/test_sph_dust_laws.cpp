@@ -4,7 +4,9 @@
 // mass accounting (PL15 sec. 4.4.2) and the [dust] deck table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "mote/core/deck.hpp"
@@ -117,6 +119,33 @@ void check_multigrain_times(bool limit_ts) {
 TEST(SphDustLaws, EpsteinMultigrainTimes) { check_multigrain_times(false); }
 
 TEST(SphDustLaws, StoppingTimeLimiterCapsAtHOverCs) { check_multigrain_times(true); }
+
+// Dust added to a running (initialised) system is initialised there (SphSystem::add_module), and again by
+// SphSystem::initialise (as SphSimulation's constructor calls it): the S variable's q = sqrt(eps) was taken
+// twice, q = eps^(1/4) (eps 0.01 became 0.1).
+TEST(SphDustLaws, DustAddedToARunningSystemKeepsItsFractionThroughASecondInitialise) {
+  for (auto var : {DustVariable::Epsilon, DustVariable::SqrtRhoEps}) {
+    SphConfig cfg;
+    cfg.gamma = 5.0 / 3.0;
+    DustSettings ds;
+    ds.variable = var;
+    ds.drag = DragLaw::ConstantK;
+    ds.k_drag = {100.0};
+    ds.eps = {0.01};
+    const DustProblem prob = dustywave(DustyWave{}, cfg, ds);
+    SphSystem sys(prob.cfg, prob.box);
+    sys.set_particles(prob.particles);
+    sys.initialise();
+    add_one_fluid_dust(sys, prob.dust, {});
+    sys.initialise();
+    const auto e = sys.module<OneFluidDust>()->snapshot(sys.particles()).eps;
+    double worst = 0.0;
+    for (size_t i = 0; i < e.extent(0); ++i) worst = std::max(worst, std::fabs(e(i, 0) / 0.01 - 1));
+    std::printf("[initialise twice] %s variable: max relative error of eps %.2e\n",
+                var == DustVariable::Epsilon ? "eps" : "S", worst);
+    EXPECT_LE(worst, 1e-14);
+  }
+}
 
 // PL15 sec. 4.4.2: eps_j < 0 is set to zero and the removed mass is accounted.
 TEST(SphDustLaws, NegativeFloorAccounting) {

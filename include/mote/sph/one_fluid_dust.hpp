@@ -80,7 +80,9 @@ class OneFluidDust : public SphModule {
   /// Sets eps_j from host data (n x N, row-major; row k for the particle with
   /// id k, ids as stored in id) before initialise().
   void set_eps(const std::vector<Real>& eps, const IntView1& id);
-  /// Converts the initial eps_j into the evolved variable.
+  /// What var holds for a dust fraction: eps_j, or q_j = S_j / sqrt(rho) = sqrt(eps_j) (PL15 eq. B1).
+  Real stored_fraction(Real eps) const;
+  /// Starts the step's state (predictor, rates, mass accounts) from var; may be called again.
   void initialise(const Particles& p);
 
   /// Leapfrog pieces (see SphSystem::step): var += dt/2 dvar, var_pred = var + dt/2 dvar.
