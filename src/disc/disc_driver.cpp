@@ -30,6 +30,14 @@ void DriverSettings::declare(core::DeckSchema& s) {
       .min(0.0)
       .unit("code time")
       .doc("Gas update once this much time has elapsed since the last one; > 0 overrides gas_every.");
+  s.real("driver.coagulation_max_interval")
+      .default_value(0.0)
+      .min(0.0)
+      .unit("code time")
+      .restart_mutable()
+      .doc(
+          "Longest interval between coagulation calls, however long the sub-step the cells propose (cuDisc's "
+          "steadyTD: 50 yr); 0 = none (RBO24 sec. 6: the proposal alone).");
 }
 
 DriverSettings DriverSettings::from_deck(const core::Deck& d) {
@@ -37,6 +45,7 @@ DriverSettings DriverSettings::from_deck(const core::Deck& d) {
   st.evolve_gas = d.boolean("driver.evolve_gas");
   st.gas_every = d.integer("driver.gas_every");
   st.gas_interval = d.real("driver.gas_interval");
+  st.coagulation_max_interval = d.real("driver.coagulation_max_interval");
   return st;
 }
 
@@ -51,6 +60,8 @@ void DiscDriver::add(SubSolver solver) {
     throw core::DeckError(logging::cat("sub-solver ", solver.name, ": every_n_steps needs N >= 1"));
   if (solver.schedule.kind == Schedule::Kind::Interval && !(solver.schedule.interval > 0))
     throw core::DeckError(logging::cat("sub-solver ", solver.name, ": the interval must be > 0"));
+  if (solver.schedule.kind == Schedule::Kind::Adaptive && solver.schedule.interval < 0)
+    throw core::DeckError(logging::cat("sub-solver ", solver.name, ": the longest interval must be >= 0"));
   if (solver.schedule.kind == Schedule::Kind::Adaptive && !solver.next_interval)
     throw core::DeckError(logging::cat("sub-solver ", solver.name, ": an adaptive schedule needs next_interval"));
   solvers_.push_back(std::move(solver));
@@ -68,8 +79,8 @@ bool DiscDriver::due(const SubSolver& s, const Clock& c, double time) const {
       return c.steps >= s.schedule.steps;
     case Schedule::Kind::Interval:
       return elapsed + slack >= s.schedule.interval;
-    case Schedule::Kind::Adaptive:
-      return elapsed + slack >= c.proposed;
+    case Schedule::Kind::Adaptive:  // the proposal, at most the schedule's longest interval (a restart may lower it)
+      return elapsed + slack >= (s.schedule.interval > 0 ? std::min(c.proposed, s.schedule.interval) : c.proposed);
   }
   return true;
 }

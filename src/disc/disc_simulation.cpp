@@ -100,7 +100,7 @@ DiscSimulation::DiscSimulation(const core::Deck& deck, const core::Comm& comm, c
     auto coag_settings = coagulation::settings_from_deck(deck);
     coag_settings.mu = gas_->config().mu;  // the gas's c_s^2 = k_B T / (mu m_H) (check_coagulation_mu)
     coag_ = std::make_unique<DiscCoagulation>(*grid_, *dust_, std::move(coag_settings), units);
-    driver_->add({"coagulation", Schedule::adaptive(),
+    driver_->add({"coagulation", Schedule::adaptive(DriverSettings::from_deck(deck).coagulation_max_interval),
                   [this](double, double elapsed) { coag_->update(gas_->fields(), elapsed); },
                   [this] { return coag_->next_interval(); }});
   }

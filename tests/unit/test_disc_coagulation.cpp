@@ -325,3 +325,18 @@ TEST(DiscCoagulation, TakesTheGasMeanMolecularWeight) {
     EXPECT_NE(std::string(e.what()).find("gas.mu"), std::string::npos) << e.what();
   }
 }
+
+// driver.coagulation_max_interval (cuDisc's 50 yr cap) becomes the coagulation schedule's longest wait
+// (DiscDriver.SchedulesCallSubSolversWhenDue holds what the cap does).
+TEST(DiscCoagulation, MaxIntervalReachesItsSchedule) {
+  auto make = [](const std::vector<std::string>& overrides) {
+    return std::make_unique<disc::DiscSimulation>(
+        core::Deck::parse(deck_text() + "[coagulation]\nkernel = \"physical\"\n", "cap", schema(), overrides),
+        core::Comm::world(), units::unit_system_by_name("au_msun"),
+        disc::DiscSimulation::well_mixed(std::vector<double>(kSpecies, 0.01 / kSpecies), 1e-40));
+  };
+  const auto schedule = [](disc::DiscSimulation& sim) { return sim.driver().sub_solvers().back().schedule; };
+  EXPECT_EQ(schedule(*make({"driver.coagulation_max_interval=3.0"})).interval, 3.0);
+  EXPECT_EQ(schedule(*make({})).interval, 0.0);
+  EXPECT_EQ(schedule(*make({})).kind, disc::Schedule::Kind::Adaptive);
+}

@@ -197,13 +197,15 @@ TEST(DiscDriver, SchedulesCallSubSolversWhenDue) {
   disc::DiscSimulation sim(deck, core::Comm::world(), units, disc::DiscSimulation::well_mixed({0.01}, 1e-40));
   auto& driver = sim.driver();
   EXPECT_TRUE(driver.sub_solvers().empty());  // static gas: nothing registered
-  double elapsed[4] = {0, 0, 0, 0};
+  double elapsed[5] = {0, 0, 0, 0, 0};
   const double dt = 0.5 * sim.max_dt();
   driver.add({"each", disc::Schedule::every_step(), [&](double, double e) { elapsed[0] += e; }, {}});
   driver.add({"third", disc::Schedule::every_n_steps(3), [&](double, double e) { elapsed[1] += e; }, {}});
   driver.add({"interval", disc::Schedule::every(2.5 * dt), [&](double, double e) { elapsed[2] += e; }, {}});
   driver.add(
       {"adaptive", disc::Schedule::adaptive(), [&](double, double e) { elapsed[3] += e; }, [dt] { return 4.0 * dt; }});
+  driver.add({"capped", disc::Schedule::adaptive(2.5 * dt), [&](double, double e) { elapsed[4] += e; },
+              [dt] { return 4.0 * dt; }});
   double t = 0;
   for (int n = 0; n < 12; ++n) {
     sim.advance(t, dt);
@@ -217,7 +219,11 @@ TEST(DiscDriver, SchedulesCallSubSolversWhenDue) {
   EXPECT_NEAR(elapsed[1], t, 1e-12 * t);
   EXPECT_NEAR(elapsed[2], t, 1e-12 * t);
   EXPECT_NEAR(elapsed[3], 9 * dt, 1e-12 * t);
+  EXPECT_EQ(driver.calls(4), 4);  // the same proposal capped at 2.5 dt: after steps 1, 4, 7 and 10
+  EXPECT_NEAR(elapsed[4], 10 * dt, 1e-12 * t);
   EXPECT_THROW(driver.add({"bad", disc::Schedule::adaptive(), [](double, double) {}, {}}), core::DeckError);
+  EXPECT_THROW(driver.add({"bad", disc::Schedule::adaptive(-1.0), [](double, double) {}, [] { return 1.0; }}),
+               core::DeckError);
 }
 
 TEST(DiscDriver, EmptyCavityKeepsItsTimeStep) {

@@ -41,12 +41,12 @@ struct Schedule {
   enum class Kind { EveryStep, EveryNSteps, Interval, Adaptive };
   Kind kind = Kind::EveryStep;
   long long steps = 1;    // EveryNSteps
-  double interval = 0.0;  // Interval (code time)
+  double interval = 0.0;  // Interval (code time); Adaptive: the longest wait however large the proposal (0: none)
 
   static Schedule every_step() { return {}; }
   static Schedule every_n_steps(long long n) { return {Kind::EveryNSteps, n, 0.0}; }
   static Schedule every(double dt) { return {Kind::Interval, 1, dt}; }
-  static Schedule adaptive() { return {Kind::Adaptive, 1, 0.0}; }
+  static Schedule adaptive(double max_interval = 0.0) { return {Kind::Adaptive, 1, max_interval}; }
 };
 
 struct SubSolver {
@@ -63,7 +63,8 @@ struct SubSolver {
 struct DriverSettings {
   bool evolve_gas = false;
   long long gas_every = 1;
-  double gas_interval = 0.0;  // > 0 overrides gas_every
+  double gas_interval = 0.0;              // > 0 overrides gas_every
+  double coagulation_max_interval = 0.0;  // longest wait between coagulation calls (0: none; cuDisc: 50 yr)
 
   static void declare(core::DeckSchema& schema);
   static DriverSettings from_deck(const core::Deck& deck);
