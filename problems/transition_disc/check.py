@@ -75,10 +75,24 @@ sum |T / T_o - 1| rho_g dV / sum rho_g dV and the largest |T / T_o - 1| in the
 mid-plane from the cell nearest --cool-from outward, both <= --against-T-tol
 (0.005); the largest anywhere (where starlight is absorbed) is reported.
 
+--reference TABLE (v_frag >= 1000 cm/s) judges the growth beyond the trap
+against DustPy on the same set-up, RBO24's own reference for Fig. 19 (its
+table from dustpy_reference.py, at the last snapshot's time; README "Against
+DustPy"): in every cell beyond the trap (to DustPy's second-to-last cell: its
+last holds the floor) the top's upper edge, the largest size whose sigma_d(m)
+is at least half the column's peak, lies within --frag-factor of DustPy's
+(log-interpolated in R; unlike the argmax it does not jump between the two
+modes of a two-peaked column), and its least-squares slope d ln a / d ln R over
+those cells within --drift-slope-tol (relative) of DustPy's. The peak sizes and
+Sigma_d against DustPy's, and DustPy's own peak against BKE12's limits, are
+reported; BKE12's drift rows above become INFO: the formula is local, and on
+the trap's outer flank, where dust diffused out of the trap holds the column,
+DustPy's peak lies below it too.
+
 --plot DIR writes the paper's figures for this run: fig12_dust_2d.png (three
 sizes in R-Z), fig13_temperature.png, fig14_sigma_m.png (sigma_d(m) at
 --radius), fig15_sigma_mR.png (sigma_d(m, R) with the fragmentation and drift
-limits; Fig. 19 for v_frag = 1000), fig16_heights.png (size distributions at
+limits, and DustPy's peak with --reference; Fig. 19 for v_frag = 1000), fig16_heights.png (size distributions at
 Z = 0, 1, 2, 3 h_g), fig17_vertical.png (three sizes against Takeuchi & Lin; Fig. 20).
 Prints 'N passed, M failed'; exits non-zero on failure.
 """
@@ -151,6 +165,11 @@ class Disc:
 
     def peak_size(self):
         return self.a[np.argmax(self.sigma_m, axis=0)]
+
+    def half_size(self):
+        """The largest size whose sigma_d(m) is at least half the column's peak: the upper edge of the top."""
+        top = self.sigma_m >= 0.5 * self.sigma_m.max(axis=0)[None, :]
+        return self.a[len(self.a) - 1 - np.argmax(top[::-1], axis=0)]
 
     def column(self, radius_au):
         return int(np.argmin(np.abs(self.R / 1.495978707e13 - radius_au)))
@@ -225,7 +244,17 @@ def check_trap(v, d, cells):
             f"{d.R[iP] / au:.3f} au (<= {cells})")
 
 
-def check_growth_limits(v, d, factor, slope_tol):
+def drift_judge(v, as_info):
+    """v.check, or (beside a DustPy reference) a row reported as INFO with the verdict it would have had."""
+    if not as_info:
+        return v.check
+    return lambda ok, text: v.info(f"{text} [BKE12's approximation, {'within' if ok else 'outside'} its bound; "
+                                   f"judged against the DustPy reference]")
+
+
+def check_growth_limits(v, d, factor, slope_tol, reference=None):
+    """Fragmentation in the trap; for v_frag >= 1000 cm/s drift beyond it: BKE12's limits, or (reference: DustPy's
+    table at this time) DustPy's peak, with BKE12's rows as INFO."""
     if d.v_frag <= 0:
         v.info("growth limits: no coagulation.v_frag in the deck")
         return
@@ -238,32 +267,83 @@ def check_growth_limits(v, d, factor, slope_tol):
             f"[{ratio.min():.3g}, {ratio.max():.3g}] (worst {worst:.3g}; within a factor {factor:g})")
     v.info(f"fragmentation limit: peak / (f_f a_frag), BKE12's two-population size (f_f = {F_FRAG:g}), lies in "
            f"[{ratio.min() / F_FRAG:.3g}, {ratio.max() / F_FRAG:.3g}]")
-    if d.v_frag >= 1000:
-        outer = np.arange(trap.max() + 1, len(d.R))  # beyond the trap (inside it lies the cavity)
-        outside = outer[ad[outer] < af[outer]]
-        if len(outside) == 0:
-            v.check(False, "drift limit: no cell beyond the trap with a_drift < a_frag: no drift-limited growth to judge")
-            return
+    if d.v_frag < 1000:
+        return
+    judge = drift_judge(v, reference is not None)
+    outer = np.arange(trap.max() + 1, len(d.R))  # beyond the trap (inside it lies the cavity)
+    outside = outer[ad[outer] < af[outer]]
+    if len(outside) == 0:
+        judge(False, "drift limit: no cell beyond the trap with a_drift < a_frag: no drift-limited growth to judge")
+    else:
         r = peak[outside] / np.minimum(af, ad)[outside]
-        v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
-                f"drift limit: in the {len(outside)} drift-limited cells beyond the trap the peak / min(a_frag, "
-                f"a_drift) lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
-        check_drift_slope(v, d, outer[ad[outer] < 0.5 * af[outer]], slope_tol)
+        judge(np.all(np.abs(np.log(r)) <= np.log(factor)),
+              f"drift limit: in the {len(outside)} drift-limited cells beyond the trap the peak / min(a_frag, "
+              f"a_drift) lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
+        check_drift_slope(judge, d, outer[ad[outer] < 0.5 * af[outer]], slope_tol)
+    if reference is not None:
+        check_reference(v, d, reference, factor, slope_tol)
 
 
-def check_drift_slope(v, d, cells, tol):
+def check_drift_slope(judge, d, cells, tol):
     """Drift-limited growth by its radial shape: the peak size falls with R as a_drift does (least squares in
     log-log over the cells where a_drift < a_frag / 2), not as a_frag."""
     if len(cells) < 3:
-        v.check(False, f"drift-limited shape: {len(cells)} cells beyond the trap with a_drift < a_frag / 2, needs 3")
+        judge(False, f"drift-limited shape: {len(cells)} cells beyond the trap with a_drift < a_frag / 2, needs 3")
         return
     lnR = np.log(d.R[cells])
     slope = lambda a: np.polyfit(lnR, np.log(a[cells]), 1)[0]
     s_peak, s_drift, s_frag = slope(d.peak_size()), slope(d.a_drift()), slope(d.a_frag())
-    v.check(abs(s_peak / s_drift - 1.0) <= tol,
-            f"drift-limited shape: over {d.R[cells[0]] / AU:.2f}-{d.R[cells[-1]] / AU:.2f} au ({len(cells)} cells) the "
-            f"peak size goes as R^{s_peak:.3g} against a_drift's R^{s_drift:.3g} (relative {abs(s_peak / s_drift - 1):.3g}"
-            f" <= {tol:g}; a_frag's R^{s_frag:.3g})")
+    judge(abs(s_peak / s_drift - 1.0) <= tol,
+          f"drift-limited shape: over {d.R[cells[0]] / AU:.2f}-{d.R[cells[-1]] / AU:.2f} au ({len(cells)} cells) the "
+          f"peak size goes as R^{s_peak:.3g} against a_drift's R^{s_drift:.3g} (relative {abs(s_peak / s_drift - 1):.3g}"
+          f" <= {tol:g}; a_frag's R^{s_frag:.3g})")
+
+
+def read_reference(path, time_yr):
+    """dustpy_reference.py's table at time_yr (to 1e-4): (R [cm], a_peak, a_half [cm], Sigma_d [g cm^-2]) of its
+    cells, or None when it has no output at that time."""
+    table = np.loadtxt(path, ndmin=2)
+    times = np.unique(table[:, 0])
+    k = int(np.argmin(np.abs(times - time_yr)))
+    if abs(times[k] - time_yr) > 1e-4 * max(time_yr, 1.0):
+        return None
+    rows = table[table[:, 0] == times[k]]
+    return rows[:, 1] * AU, rows[:, 2], rows[:, 3], rows[:, 4]
+
+
+def check_reference(v, d, reference, factor, tol):
+    """Growth beyond the trap as DustPy's (RBO24 Fig. 19): the top's upper edge (half_size) per cell within factor
+    of DustPy's (log-interpolated in R; DustPy's last cell, which holds the floor, left out) and its radial slope
+    within tol; the peak sizes (argmax) reported."""
+    if reference is False:
+        v.check(False, f"DustPy reference: no output at t = {d.time_yr:.4g} yr in the table")
+        return
+    R_ref, peak_ref, a_ref, Sd_ref = reference
+    trap = trap_cells(d)
+    cells = np.arange(trap.max() + 1, len(d.R))
+    cells = cells[(d.R[cells] >= R_ref[0]) & (d.R[cells] <= R_ref[-2])]
+    if len(cells) < 3:
+        v.check(False, f"DustPy reference: {len(cells)} cells beyond the trap within its grid, needs 3")
+        return
+    at = lambda y: np.exp(np.interp(np.log(d.R[cells]), np.log(R_ref), np.log(y)))
+    top, a_dp = d.half_size()[cells], at(a_ref)
+    r = top / a_dp
+    span = f"{d.R[cells[0]] / AU:.2f}-{d.R[cells[-1]] / AU:.2f} au"
+    v.check(np.all(np.abs(np.log(r)) <= np.log(factor)),
+            f"DustPy reference: in the {len(cells)} cells beyond the trap ({span}) the largest size at half the "
+            f"sigma_d(m) peak / DustPy's lies in [{r.min():.3g}, {r.max():.3g}] (within a factor {factor:g})")
+    lnR = np.log(d.R[cells])
+    s_top, s_dp = np.polyfit(lnR, np.log(top), 1)[0], np.polyfit(lnR, np.log(a_dp), 1)[0]
+    v.check(abs(s_top / s_dp - 1.0) <= tol,
+            f"DustPy reference shape: over {span} that size goes as R^{s_top:.3g} against DustPy's R^{s_dp:.3g} "
+            f"(relative {abs(s_top / s_dp - 1):.3g} <= {tol:g})")
+    peak, peak_dp = d.peak_size()[cells], at(peak_ref)
+    Sd = np.sum(d.Sigma_s, axis=0)[cells] / at(Sd_ref)
+    bke = peak_dp / np.minimum(d.a_frag()[cells], d.a_drift()[cells] / Sd)
+    v.info(f"DustPy reference: the sigma_d(m) peak / DustPy's in [{(peak / peak_dp).min():.3g}, "
+           f"{(peak / peak_dp).max():.3g}], Sigma_d / DustPy's in [{Sd.min():.3g}, {Sd.max():.3g}] over {span}; "
+           f"DustPy's peak / min(a_frag, a_drift of its Sigma_d) in [{bke.min():.3g}, {bke.max():.3g}] (BKE12's "
+           f"row on DustPy)")
 
 
 def settling_species(d, i):
@@ -414,7 +494,7 @@ def check_against_temperature(v, d, o, tol, radius):
            f"Z = {d.Z[i, k] / d.h_g[i]:.2f} h_g")
 
 
-def plot(d, out, radius):
+def plot(d, out, radius, reference=None):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -465,6 +545,9 @@ def plot(d, out, radius):
     ax.plot(d.R / au, d.a_frag(), "w-", label="fragmentation barrier")
     ax.plot(d.R / au, F_FRAG * d.a_frag(), "w:", label=f"x f_f = {F_FRAG:g}")
     ax.plot(d.R / au, d.a_drift(), "w--", label="drift limit")
+    if reference:
+        dusty = reference[3] > 1e-6 * reference[3].max()  # not the cavity's floor
+        ax.plot(reference[0][dusty] / au, reference[1][dusty], "c.-", lw=0.8, ms=3, label="DustPy's peak")
     ax.set(xscale="log", yscale="log", xlabel="R [au]", ylabel="a [cm]", ylim=(d.a[0], d.a[-1]),
            title=("Fig. 19: " if d.v_frag >= 1000 else "Fig. 15: ") + title)
     ax.legend(fontsize=8)
@@ -523,6 +606,9 @@ def main():
                    help="K at 1 au: the isothermal run's mid-plane temperature (DustPy's)")
     p.add_argument("--cool-from", type=float, default=6.0,
                    help="au: the cooler interior is asserted from the cell nearest this radius outward")
+    p.add_argument("--reference", metavar="TABLE",
+                   help="v_frag >= 1000 cm/s: DustPy's run of the same deck (dustpy_reference.py) to judge the drift "
+                        "region against")
     p.add_argument("--against", metavar="RUN_DIR",
                    help="compare the last snapshot with this run's at the same time (another deck of the same grid)")
     p.add_argument("--against-tol", type=float, default=0.05)
@@ -544,7 +630,12 @@ def main():
     check_shape(v, discs, args.shape_tol)
     report_drift(v, snaps[-1], d)
     check_trap(v, d, args.trap_cells)
-    check_growth_limits(v, d, args.frag_factor, args.drift_slope_tol)
+    reference = None
+    if args.reference and d.v_frag < 1000:
+        v.info("--reference: the drift region is judged for v_frag >= 1000 cm/s only")
+    elif args.reference:
+        reference = read_reference(args.reference, d.time_yr) or False
+    check_growth_limits(v, d, args.frag_factor, args.drift_slope_tol, reference)
     radius = args.radius or (10.0 if d.v_frag >= 1000 else 6.0)
     check_settling(v, d, radius, args.settle_tol)
     if d.v_frag >= 1000:
@@ -557,7 +648,7 @@ def main():
     else:
         v.info("isothermal run: the non-isothermal checks (super-heated surface, cooler interior) need [radiation]")
     if args.plot:
-        plot(d, args.plot, radius)
+        plot(d, args.plot, radius, reference)
     return v.finish()
 
 

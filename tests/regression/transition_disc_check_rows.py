@@ -30,6 +30,11 @@ Gaussian of a chosen scale height. Checks:
     a_peak = a_frag beyond the trap fails both; a_peak = a_drift (R / R_0)^(0.3 s)
     (s a_drift's slope, 0.5 at R_0 so within the factor 2) fails the shape row only;
     a disc with a_drift above a_frag everywhere fails the drift row (nothing to judge);
+  * --reference: a DustPy table on every other cell built from the disc's own
+    sizes passes the size and shape rows and makes BKE12's drift rows INFO;
+    DustPy's sizes at 2.5 x fail the size row only, tilted by
+    (R / R_0)^(0.3 s) the shape row only; a table without the disc's time
+    fails; the top's upper edge is 3.25 x the log-normal's peak (to a bin);
   * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
     1.5 x that fails them (tol 0.3); grains grown only to 1 um leave two sizes: FAIL;
   * --against: a run on the same grid whose dust differs by 0.2 % passes at
@@ -233,6 +238,42 @@ def drift_rows(checks):
     checks.check(v.verdicts("drift limit") == ["FAIL"], "drift row with a_drift > a_frag everywhere: FAIL")
 
 
+def reference_rows(checks):
+    """--reference: a DustPy table (dustpy_reference.py's columns) on every other cell of the disc's grid, at the
+    disc's time, built from the disc's own sizes passes both rows (log interpolation between its cells) and turns
+    BKE12's rows into INFO; DustPy's sizes 2.5 x the disc's fail the size row only; tilted by (R / R_0)^(0.3 s)
+    within the factor 2 the shape row only; a table without the disc's time fails. The disc's top edge is its
+    log-normal's half maximum, a_peak exp((2 ln 2)^1/2) = 3.25 a_peak (to a bin)."""
+    d = disc(1000.0, lambda d: np.minimum(d.a_frag(), d.a_drift()))
+    cells = np.arange(0, len(d.R), 2)
+    beyond = d.R[cells] > d.R[check.trap_cells(d).max()]
+    s = np.polyfit(np.log(d.R[cells][beyond]), np.log(d.half_size()[cells][beyond]), 1)[0]
+    cases = (("the disc's", 1.0, 3e5, ["PASS"], ["PASS"]), ("2.5 x the disc's", 2.5, 3e5, ["FAIL"], ["PASS"]),
+             ("tilted", (d.R[cells] / d.R[60]) ** (0.3 * s), 3e5, ["PASS"], ["FAIL"]),
+             ("the disc's at 1e5 yr", 1.0, 1e5, ["FAIL"], []))
+    edge = d.half_size() / d.peak_size()
+    path = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"dustpy_reference_{os.getpid()}.csv")
+    try:
+        for name, scale, t, size_row, shape_row in cases:
+            table = np.column_stack([np.full(len(cells), t), d.R[cells] / AU, d.peak_size()[cells] * scale,
+                                     d.half_size()[cells] * scale, d.Sigma_s.sum(axis=0)[cells]])
+            np.savetxt(path, table, header="t_yr R_au a_peak_cm a_half_cm Sigma_d_g_cm2")
+            v = Rows()
+            check.check_growth_limits(v, d, 2.0, 0.2, check.read_reference(path, d.time_yr) or False)
+            size = [r[0] for r in v.rows if r[1].startswith("DustPy reference:") and r[0] != "INFO"]
+            ok = (size == size_row and v.verdicts("DustPy reference shape") == shape_row
+                  and not v.verdicts("drift limit") and not v.verdicts("drift-limited shape")
+                  and any(r[1].startswith("drift limit") for r in v.rows)
+                  and np.all(np.abs(np.log(edge / 3.25)) <= np.log(d.a[1] / d.a[0])))
+            checks.check(ok, f"--reference, DustPy's sizes at {name}: size row {size_row[0]}, shape "
+                             f"{(shape_row or ['none'])[0]}, BKE12's rows INFO; top edge / peak "
+                             f"{edge.min():.3g}-{edge.max():.3g}: "
+                             + " / ".join(r[1] for r in v.rows if r[1].startswith("DustPy") and r[0] != "INFO"))
+    finally:
+        if os.path.exists(path):
+            os.remove(path)
+
+
 def settling_rows(checks):
     for scale, expect in ((1.0, "PASS"), (1.5, "FAIL")):
         v = Rows()
@@ -360,6 +401,7 @@ steady_rows(checks)
 trap_rows(checks)
 fragmentation_rows(checks)
 drift_rows(checks)
+reference_rows(checks)
 settling_rows(checks)
 temperature_rows(checks)
 against_rows(checks)
