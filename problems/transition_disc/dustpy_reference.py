@@ -3,12 +3,12 @@
 reference RBO24 sec. 7 compare cuDisc with (Fig. 14, 19), written as the
 reference table check.py --reference reads.
 
-usage: dustpy_reference.py DECK OUT.csv [--bins-per-decade 7] [--abs-tol 1e-6]
-                           [--t-end YR] [--data-dir DIR]
+usage: dustpy_reference.py DECK OUT [--bins-per-decade 7] [--abs-tol 1e-6] [--t-end YR]
 
 Needs DustPy and Simframe importable (not a mote dependency; CI does not run
 this). The run takes from the deck: the radial grid (log cells R_in-R_out), the
-fixed gas Sigma_0 (R/R_ref)^-p exp[-(R_cavity/R)^q] with v_R = 0, the
+fixed gas Sigma_0 (R/R_ref)^-p exp[-(R_cavity/R)^q] with v_R = 0 (its edge
+cells held too), the
 vertically isothermal T = T_ref (R/R_ref)^-T_index, mu, alpha (viscosity and
 the dust's mixing, delta = alpha), rho_grain, v_frag, the dust-to-gas floor
 (dust.floor_ratio per bin, DustPy's own being one particle per annulus) and the
@@ -80,6 +80,9 @@ def set_gas(s, deck):
     Sigma = Sigma0 * (r / R_ref) ** -deck_value(deck, "gas.Sigma_index", 1.0) * np.exp(
         -((deck_value(deck, "gas.R_cavity", 0.0) / r) ** deck_value(deck, "gas.cavity_index", 10.0)))
     s.gas.Sigma[...] = np.maximum(Sigma, 1e-100)
+    # DustPy's finaliser applies the gas boundaries after every step, with no gas step: hold the edge cells too
+    s.gas.boundary.inner.setcondition("val", s.gas.Sigma[0])
+    s.gas.boundary.outer.setcondition("val", s.gas.Sigma[-1])
     s.gas.T.updater = None
     s.gas.T[...] = deck_value(deck, "gas.T_ref") * (r / R_ref) ** -deck_value(deck, "gas.T_index", 0.5)
     s.integrator.instructions = [i for i in s.integrator.instructions if "gas" not in i.description.lower()]
@@ -138,7 +141,6 @@ def main():
     p.add_argument("--bins-per-decade", type=int, default=7, help="DustPy's mass bins per decade (RBO24: 7)")
     p.add_argument("--abs-tol", type=float, default=1e-6, help="the step's absolute tolerance (of the cell's dust)")
     p.add_argument("--t-end", type=float, default=0.0, help="years (0: the deck's run.t_end)")
-    p.add_argument("--data-dir", default="", help="also keep DustPy's own outputs here")
     args = p.parse_args()
     with open(args.deck, "rb") as f:
         deck = tomllib.load(f)
@@ -152,11 +154,7 @@ def main():
     set_dust(s, deck)
     set_step(s, args.abs_tol, deck_value(deck, "gas.R_cavity", 0.0) * AU)
     s.verbosity = 0
-    if args.data_dir:
-        s.writer.datadir = args.data_dir
-        s.writer.overwrite = True
-    else:
-        s.writer = None
+    s.writer = None
     rows, start = table_rows(s), time.time()
     outputs = sorted(x for x in times if 0.0 < x <= t_end * (1 + 1e-9))
     outputs = [t for i, t in enumerate(outputs) if i == 0 or t > outputs[i - 1] * (1 + 1e-9)]

@@ -34,7 +34,8 @@ Gaussian of a chosen scale height. Checks:
     sizes passes the size and shape rows and makes BKE12's drift rows INFO;
     DustPy's sizes at 2.5 x fail the size row only, tilted by
     (R / R_0)^(0.3 s) the shape row only; a table without the disc's time
-    fails; the top's upper edge is 3.25 x the log-normal's peak (to a bin);
+    fails; 100 x in DustPy's last cell (its boundary, not compared) passes;
+    the top's upper edge is 3.25 x the log-normal's peak (to a bin);
   * settling: h_d = h_g (alpha / (alpha + St))^1/2 passes at three sizes to 1 %;
     1.5 x that fails them (tol 0.3); grains grown only to 1 um leave two sizes: FAIL;
   * --against: a run on the same grid whose dust differs by 0.2 % passes at
@@ -242,7 +243,8 @@ def reference_rows(checks):
     """--reference: a DustPy table (dustpy_reference.py's columns) on every other cell of the disc's grid, at the
     disc's time, built from the disc's own sizes passes both rows (log interpolation between its cells) and turns
     BKE12's rows into INFO; DustPy's sizes 2.5 x the disc's fail the size row only; tilted by (R / R_0)^(0.3 s)
-    within the factor 2 the shape row only; a table without the disc's time fails. The disc's top edge is its
+    within the factor 2 the shape row only; a table without the disc's time fails; 100 x the sizes in DustPy's last
+    cell (its boundary) changes nothing. The disc's top edge is its
     log-normal's half maximum, a_peak exp((2 ln 2)^1/2) = 3.25 a_peak (to a bin)."""
     d = disc(1000.0, lambda d: np.minimum(d.a_frag(), d.a_drift()))
     cells = np.arange(0, len(d.R), 2)
@@ -250,7 +252,9 @@ def reference_rows(checks):
     s = np.polyfit(np.log(d.R[cells][beyond]), np.log(d.half_size()[cells][beyond]), 1)[0]
     cases = (("the disc's", 1.0, 3e5, ["PASS"], ["PASS"]), ("2.5 x the disc's", 2.5, 3e5, ["FAIL"], ["PASS"]),
              ("tilted", (d.R[cells] / d.R[60]) ** (0.3 * s), 3e5, ["PASS"], ["FAIL"]),
-             ("the disc's at 1e5 yr", 1.0, 1e5, ["FAIL"], []))
+             ("the disc's at 1e5 yr", 1.0, 1e5, ["FAIL"], []),
+             ("the disc's, 100 x in its last cell", np.where(np.arange(len(cells)) == len(cells) - 1, 100.0, 1.0),
+              3e5, ["PASS"], ["PASS"]))
     edge = d.half_size() / d.peak_size()
     path = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"dustpy_reference_{os.getpid()}.csv")
     try:
