@@ -617,6 +617,9 @@ def main():
     p.add_argument("--against-T-tol", type=float, default=0.005,
                    help="non-isothermal runs: T's gas-mass-weighted L1 and mid-plane distances from --cool-from out")
     args = p.parse_args()
+    if args.reference and not os.path.isfile(args.reference):
+        print(f"check.py: --reference {args.reference}: no such file (dustpy_reference.py writes it)")
+        return 2
     paths = mote.list_snapshots(args.run_dir)
     if not paths:
         print(f"no snapshots in {args.run_dir}")

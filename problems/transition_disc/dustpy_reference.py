@@ -142,8 +142,11 @@ def main():
     p.add_argument("--abs-tol", type=float, default=1e-6, help="the step's absolute tolerance (of the cell's dust)")
     p.add_argument("--t-end", type=float, default=0.0, help="years (0: the deck's run.t_end)")
     args = p.parse_args()
-    with open(args.deck, "rb") as f:
-        deck = tomllib.load(f)
+    try:
+        with open(args.deck, "rb") as f:
+            deck = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        sys.exit(f"dustpy_reference.py: cannot read the deck {args.deck}: {e}")
     if deck_value(deck, "run.units", "") != "au_msun":
         sys.exit("dustpy_reference.py: reads decks in run.units = \"au_msun\" (one year is 2 pi code time)")
     code_year = 2.0 * np.pi
